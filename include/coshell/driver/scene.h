@@ -1,0 +1,59 @@
+#pragma once
+
+#include <coshell/io/json.h>
+#include <coshell/io/results.h>
+#include <coshell/io/vtu_output.h>
+#include <coshell/mesh/mesh.h>
+#include <coshell/model/boundary_conditions.h>
+#include <coshell/model/element_parameters.h>
+#include <coshell/model/loads.h>
+#include <coshell/model/quantities.h>
+#include <coshell/solvers/linear_solver.h>
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace coshell::driver
+{
+  /// Reads a .prm file, applying "Section/Sub/Name=value" overrides.
+  /// Throws std::runtime_error naming the file, line or parameter.
+  void read_parameters(dealii::ParameterHandler       &prm,
+                       const std::string              &file,
+                       const std::vector<std::string> &overrides);
+
+  /// A scene: mesh, element, boundary conditions, loads, quantities of
+  /// interest, solver and output, all from one parameter file. Runs each
+  /// refinement level and writes per-level results plus, for a study,
+  /// convergence.csv.
+  class Scene
+  {
+  public:
+    /// Declares every subsection of every component.
+    static void declare_parameters(dealii::ParameterHandler &prm);
+    void parse_parameters(dealii::ParameterHandler &prm,
+                          const std::string        &prm_file);
+
+    /// Runs all levels; returns the summary written to summary.json.
+    io::Json run(const std::string &output_directory, std::ostream &log);
+
+    const io::VtuOutput &output() const;
+
+  private:
+    std::string                  prm_file_;
+    mesh::MeshParameters         mesh_;
+    model::ElementParameters     element_;
+    model::BoundaryConditions    boundary_conditions_;
+    model::Loads                 loads_;
+    model::QuantitiesOfInterest  quantities_;
+    solvers::LinearSolver        linear_solver_;
+    io::VtuOutput                output_;
+    std::vector<io::LevelResult> levels_;
+
+    io::Json run_level(unsigned int       level,
+                       const std::string &directory,
+                       std::ostream      &log);
+  };
+} // namespace coshell::driver

@@ -1,0 +1,44 @@
+#pragma once
+
+#include <coshell/element/material.h>
+#include <coshell/element/triangle.h>
+
+#include <deal.II/lac/full_matrix.h>
+
+#include <array>
+
+namespace coshell::element
+{
+  using dealii::FullMatrix;
+
+  /// In-plane stress resultants (Nxx, Nyy, Nxy), force per unit length.
+  using MembraneForces = std::array<double, 3>;
+
+  /// Membrane DOFs of one triangle in its frame, node by node:
+  /// (u_0, v_0, theta_z0, u_1, v_1, theta_z1, u_2, v_2, theta_z2),
+  /// theta_z being the drilling rotation about the element normal.
+  using MembraneDisplacements = std::array<double, 9>;
+
+  /// Constant-strain triangle: K = h A B^T C B with
+  /// C = E/(1-nu^2) [[1,nu,0],[nu,1,0],[0,0,(1-nu)/2]], returned on the 9
+  /// membrane DOFs above. The drilling rows/columns are zero here; see
+  /// add_drilling_penalty().
+  FullMatrix<double> cst_stiffness(const PlanarTriangle &triangle,
+                                   const ShellMaterial  &material);
+
+  /// Drilling penalty that ties each nodal theta_z to the element's
+  /// in-plane rotation omega = (dv/dx - du/dy)/2 (Hughes & Brezzi 1989):
+  ///   E_drill = 1/2 k sum_i (theta_zi - omega)^2,  k = factor * E h A / 3.
+  /// Rigid in-plane rotations (theta_zi = omega) cost nothing, so the
+  /// rigid-body null space is untouched, while a nodal theta_z alone is
+  /// resisted: flat meshes are no longer singular.
+  void add_drilling_penalty(const PlanarTriangle &triangle,
+                            const ShellMaterial  &material,
+                            double                factor,
+                            FullMatrix<double>   &membrane_stiffness);
+
+  /// Constant membrane forces of a CST from its membrane DOFs.
+  MembraneForces cst_membrane_forces(const PlanarTriangle        &triangle,
+                                     const ShellMaterial         &material,
+                                     const MembraneDisplacements &dofs);
+} // namespace coshell::element

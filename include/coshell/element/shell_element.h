@@ -1,0 +1,58 @@
+#pragma once
+
+#include <coshell/element/bending.h>
+#include <coshell/element/membrane.h>
+
+#include <optional>
+
+namespace coshell::element
+{
+  enum class MembraneElement
+  {
+    cst ///< constant-strain triangle + drilling penalty
+  };
+
+  /// What the flat shell element is made of. An unset optional switches
+  /// that part off (the paper computed Table 1 with bending only).
+  struct ShellElementOptions
+  {
+    std::optional<MembraneElement> membrane = MembraneElement::cst;
+    std::optional<BendingElement>  bending  = BendingElement::dkt;
+    /// Dimensionless size of the drilling penalty (see add_drilling_penalty).
+    double drilling_factor = 1e-3;
+  };
+
+  /// Number of DOFs of the flat shell triangle: 3 vertices x (u_x, u_y,
+  /// u_z, theta_x, theta_y, theta_z) in global axes, index = 6*vertex +
+  /// component, which is deal.II's cell-local order for
+  /// FESystem(FE_SimplexP<2,3>(1), 6).
+  constexpr unsigned int shell_dofs = 18;
+  using ShellDisplacements = std::array<double, shell_dofs>;
+
+  /// Linear flat-shell stiffness in global axes: membrane and bending
+  /// assembled in the element frame (make_element_frame) and rotated with
+  /// K = T^T K_local T.
+  FullMatrix<double> shell_stiffness(const SpatialTriangle     &triangle,
+                                     const ShellMaterial       &material,
+                                     const ShellElementOptions &options);
+
+  /// Stress resultants of one element, in its frame and rotated to global
+  /// axes as symmetric 3x3 tensors (N = sum N_ab e_a (x) e_b, same for M).
+  struct ShellResultants
+  {
+    MembraneForces               membrane_local{};
+    BendingMoments               bending_local{};
+    dealii::Tensor<2, 3>         membrane_global;
+    dealii::Tensor<2, 3>         bending_global;
+  };
+
+  ShellResultants shell_resultants(const SpatialTriangle     &triangle,
+                                   const ShellMaterial       &material,
+                                   const ShellElementOptions &options,
+                                   const ShellDisplacements  &dofs);
+
+  /// Rotates 18 global DOFs into the element frame (per node: local
+  /// translations then local rotations).
+  ShellDisplacements to_element_frame(const ElementFrame       &frame,
+                                      const ShellDisplacements &global_dofs);
+} // namespace coshell::element

@@ -1,0 +1,37 @@
+#pragma once
+
+#include <coshell/io/json.h>
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace coshell::io
+{
+  /// Wall-clock seconds of the phases of one run.
+  struct PhaseTimes
+  {
+    double setup = 0, assemble = 0, solve = 0, output = 0, total = 0;
+  };
+
+  /// What one refinement level produced.
+  struct LevelResult
+  {
+    unsigned int                  level = 0;
+    double                        h     = 0; ///< longest edge in the mesh
+    unsigned int                  n_cells = 0, n_vertices = 0;
+    unsigned long                 n_dofs = 0, n_inactive_dofs = 0;
+    PhaseTimes                    wall_time_s;
+    std::map<std::string, double> qoi, reference;
+
+    /// |qoi - reference| / |reference| for every quantity with a reference.
+    std::map<std::string, double> relative_errors() const;
+    Json                          to_json() const;
+  };
+
+  /// convergence.csv: level,h,n_cells,n_dofs,<qoi>,relative_error,rate,
+  /// wall_time_s for the primary quantity (the first with a reference,
+  /// else the first), then value and relative error of any others. The
+  /// rate is log(e_{k-1}/e_k) / log(h_{k-1}/h_k).
+  std::string convergence_csv(const std::vector<LevelResult> &levels);
+} // namespace coshell::io

@@ -1,0 +1,44 @@
+#pragma once
+
+#include <coshell/model/shell_model.h>
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace coshell::model
+{
+  /// Named scalar results ("quantities of interest") and their references,
+  /// from prm subsection "Quantities of interest".
+  class QuantitiesOfInterest
+  {
+  public:
+    static void declare_parameters(dealii::ParameterHandler &prm);
+    void        parse_parameters(dealii::ParameterHandler &prm);
+
+    /// Values of every named quantity for a solution.
+    std::map<std::string, double>
+    evaluate(const ShellModel &model, const dealii::Vector<double> &solution) const;
+
+    /// Reference values given in the prm, by name.
+    const std::map<std::string, double> &references() const;
+
+  private:
+    struct PointValue
+    {
+      std::string      name;
+      dealii::Point<3> where;
+      Component        component;
+    };
+    struct MaximumValue
+    {
+      std::string name;
+      Component   component;
+    };
+    std::vector<PointValue>       point_values_;
+    std::vector<MaximumValue>     maximum_values_;
+    std::map<std::string, double> references_;
+  };
+} // namespace coshell::model

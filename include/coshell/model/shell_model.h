@@ -1,0 +1,92 @@
+#pragma once
+
+#include <coshell/element/shell_element.h>
+#include <coshell/mesh/mesh.h>
+#include <coshell/model/element_parameters.h>
+
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/vector.h>
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace coshell::model
+{
+  using dealii::types::global_dof_index;
+  using CellIterator = dealii::DoFHandler<2, 3>::active_cell_iterator;
+
+  /// Per-vertex unknowns, in this order, in global axes.
+  enum Component : unsigned int
+  {
+    ux,
+    uy,
+    uz,
+    rx,
+    ry,
+    rz
+  };
+  constexpr unsigned int dofs_per_vertex = 6;
+
+  /// "ux" -> Component::ux etc.; throws naming the accepted names.
+  Component parse_component(const std::string &name);
+  std::string component_name(unsigned int component);
+
+  /// The six global DoF indices of one mesh vertex.
+  using VertexDofs = std::array<global_dof_index, dofs_per_vertex>;
+
+  /// Discretization of a flat-facet shell: FESystem(FE_SimplexP(1), 6) on
+  /// the surface, oriented cell normals, and the element kernels. Knows
+  /// nothing of boundary conditions, loads or solvers.
+  class ShellModel
+  {
+  public:
+    ShellModel(const mesh::Surface        &surface,
+               const ElementParameters    &element,
+               const dealii::Tensor<1, 3> &normal_reference);
+
+    const dealii::DoFHandler<2, 3> &dof_handler() const;
+    const mesh::Surface            &surface() const;
+    const ElementParameters        &element_parameters() const;
+    global_dof_index                n_dofs() const;
+
+    /// DoFs of vertex 'v' (a Triangulation vertex index). Only vertices
+    /// used by a cell have DoFs.
+    const VertexDofs &vertex_dofs(unsigned int v) const;
+    bool              vertex_is_used(unsigned int v) const;
+    /// Vertex index closest to a point (among used vertices).
+    unsigned int nearest_vertex(const dealii::Point<3> &point) const;
+
+    element::SpatialTriangle triangle(const CellIterator &cell) const;
+    /// Unit normal of the cell, oriented consistently over the surface.
+    dealii::Tensor<1, 3> unit_normal(const CellIterator &cell) const;
+
+    /// Sparsity of the stiffness with the given constraints.
+    void make_sparsity(const dealii::AffineConstraints<double> &constraints,
+                       dealii::SparsityPattern                 &pattern) const;
+    /// Assembles the linear stiffness (multithreaded with WorkStream).
+    void assemble_stiffness(const dealii::AffineConstraints<double> &constraints,
+                            dealii::SparseMatrix<double> &matrix) const;
+
+    /// The 18 element DoF values of a cell, in kernel order.
+    element::ShellDisplacements
+    cell_values(const CellIterator &cell, const dealii::Vector<double> &u) const;
+
+    /// Membrane forces and bending moments of every active cell.
+    std::vector<element::ShellResultants>
+    resultants(const dealii::Vector<double> &solution) const;
+
+  private:
+    const mesh::Surface            &surface_;
+    ElementParameters               element_;
+    dealii::FESystem<2, 3>          fe_;
+    dealii::DoFHandler<2, 3>        dof_handler_;
+    std::vector<VertexDofs>         vertex_dofs_;
+    std::vector<int>                normal_sign_;
+
+    void number_vertex_dofs();
+  };
+} // namespace coshell::model

@@ -1,0 +1,42 @@
+#pragma once
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/vector.h>
+
+#include <memory>
+#include <string>
+
+namespace coshell::solvers
+{
+  /// Solves K x = b for the assembled (condensed) stiffness. The method is
+  /// chosen in prm subsection "Linear solver".
+  class LinearSolver
+  {
+  public:
+    LinearSolver();
+    ~LinearSolver();
+
+    static void declare_parameters(dealii::ParameterHandler &prm);
+    void        parse_parameters(dealii::ParameterHandler &prm);
+
+    /// Factorizes (direct) or sets up the preconditioner (iterative).
+    void factorize(const dealii::SparseMatrix<double> &matrix);
+    /// Solves with the last factorized matrix. Throws std::runtime_error if
+    /// an iterative method does not converge.
+    void solve(dealii::Vector<double> &x, const dealii::Vector<double> &b);
+
+    const std::string &method() const;
+    /// Iterations of the last solve (1 for a direct solver).
+    unsigned int last_iterations() const;
+
+  private:
+    std::string  method_ = "umfpack";
+    double       tolerance_ = 1e-10;
+    unsigned int max_iterations_ = 10000;
+    unsigned int last_iterations_ = 0;
+
+    struct Backend;
+    std::unique_ptr<Backend> backend_;
+  };
+} // namespace coshell::solvers

@@ -1,0 +1,43 @@
+#pragma once
+
+#include <coshell/model/loads.h>
+#include <coshell/model/shell_model.h>
+#include <coshell/solvers/linear_solver.h>
+
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/sparsity_pattern.h>
+#include <deal.II/lac/vector.h>
+
+#include <ostream>
+
+namespace coshell::solvers
+{
+  /// Small-displacement static analysis: K u = f with constraints.
+  class LinearStatic
+  {
+  public:
+    LinearStatic(const model::ShellModel                 &model,
+                 const dealii::AffineConstraints<double> &constraints);
+
+    /// Assembles K and f. DoFs that no element stiffens (the in-plane DoFs
+    /// of a flat plate with the membrane off) get a unit-scaled diagonal so
+    /// K stays regular; a load on such a DoF is an error.
+    void assemble(const model::Loads &loads, std::ostream &log);
+
+    /// Factorizes and solves; returns the displacement/rotation vector.
+    dealii::Vector<double> solve(LinearSolver &solver) const;
+
+    unsigned int n_inactive_dofs() const;
+
+  private:
+    const model::ShellModel                 &model_;
+    const dealii::AffineConstraints<double> &constraints_;
+    dealii::SparsityPattern                  sparsity_;
+    dealii::SparseMatrix<double>             stiffness_;
+    dealii::Vector<double>                   load_;
+    unsigned int                             n_inactive_dofs_ = 0;
+
+    void regularize_inactive_dofs();
+  };
+} // namespace coshell::solvers

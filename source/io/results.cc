@@ -1,0 +1,102 @@
+#include <coshell/io/results.h>
+
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+namespace coshell::io
+{
+  std::map<std::string, double> LevelResult::relative_errors() const
+  {
+    std::map<std::string, double> errors;
+    for (const auto &[name, value] : reference)
+      if (qoi.count(name))
+        errors[name] = std::abs(qoi.at(name) - value) / std::abs(value);
+    return errors;
+  }
+
+  Json LevelResult::to_json() const
+  {
+    Json json;
+    json["refinement_level"] = level;
+    json["h"]                = h;
+    json["n_cells"]          = n_cells;
+    json["n_vertices"]       = n_vertices;
+    json["n_dofs"]           = n_dofs;
+    json["n_inactive_dofs"]  = n_inactive_dofs;
+    Json &times              = json["wall_time_s"];
+    times["setup"]           = wall_time_s.setup;
+    times["assemble"]        = wall_time_s.assemble;
+    times["solve"]           = wall_time_s.solve;
+    times["output"]          = wall_time_s.output;
+    times["total"]           = wall_time_s.total;
+    Json::Object qoi_json(qoi.begin(), qoi.end());
+    json["qoi"] = qoi_json;
+    if (!reference.empty())
+      {
+        json["reference"] = Json::Object(reference.begin(), reference.end());
+        const auto errors = relative_errors();
+        json["relative_error"] = Json::Object(errors.begin(), errors.end());
+      }
+    return json;
+  }
+
+  namespace
+  {
+    std::string primary_quantity(const LevelResult &level)
+    {
+      for (const auto &[name, value] : level.reference)
+        if (level.qoi.count(name))
+          return name;
+      return level.qoi.empty() ? "" : level.qoi.begin()->first;
+    }
+
+    std::string optional_number(const std::map<std::string, double> &map,
+                                const std::string                   &key)
+    {
+      if (!map.count(key))
+        return "";
+      std::ostringstream out;
+      out << std::setprecision(10) << map.at(key);
+      return out.str();
+    }
+  } // namespace
+
+  std::string convergence_csv(const std::vector<LevelResult> &levels)
+  {
+    std::ostringstream csv;
+    if (levels.empty())
+      return "";
+    const std::string primary = primary_quantity(levels.front());
+    csv << "level,h,n_cells,n_dofs," << (primary.empty() ? "qoi" : primary)
+        << ",relative_error,rate,wall_time_s";
+    for (const auto &[name, value] : levels.front().qoi)
+      if (name != primary)
+        csv << ',' << name << ',' << name << "_relative_error";
+    csv << '\n' << std::setprecision(10);
+    for (unsigned int k = 0; k < levels.size(); ++k)
+      {
+        const auto &l      = levels[k];
+        const auto  errors = l.relative_errors();
+        std::string rate;
+        if (k > 0 && errors.count(primary) &&
+            levels[k - 1].relative_errors().count(primary))
+          {
+            const double previous = levels[k - 1].relative_errors().at(primary);
+            std::ostringstream r;
+            r << std::log(previous / errors.at(primary)) /
+                   std::log(levels[k - 1].h / l.h);
+            rate = r.str();
+          }
+        csv << l.level << ',' << l.h << ',' << l.n_cells << ',' << l.n_dofs
+            << ',' << optional_number(l.qoi, primary) << ','
+            << optional_number(errors, primary) << ',' << rate << ','
+            << l.wall_time_s.total;
+        for (const auto &[name, value] : l.qoi)
+          if (name != primary)
+            csv << ',' << value << ',' << optional_number(errors, name);
+        csv << '\n';
+      }
+    return csv.str();
+  }
+} // namespace coshell::io

@@ -1,0 +1,116 @@
+#include <coshell/mesh/mesh.h>
+
+#include <deal.II/base/utilities.h>
+
+#include <cmath>
+#include <filesystem>
+
+namespace coshell::mesh
+{
+  using namespace dealii;
+
+  void MeshParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Mesh");
+    prm.declare_entry("Source",
+                      "rectangle",
+                      Patterns::Selection("rectangle|gmsh"),
+                      "Where the mesh comes from: a generated rectangular "
+                      "plate in the z=0 plane (boundary ids 0: x=0, 1: x=Lx, "
+                      "2: y=0, 3: y=Ly) or a gmsh file.");
+    prm.declare_entry("Gmsh file",
+                      "",
+                      Patterns::Anything(),
+                      "A .msh file (read as is, then refined globally per "
+                      "level) or a .geo file (meshed by gmsh for each level "
+                      "with lengths scaled by 2^-level). Relative paths are "
+                      "tried from the working directory, then from the "
+                      "directory of the parameter file.");
+    prm.declare_entry("Triangle pattern",
+                      "crossed",
+                      Patterns::Selection("same-diagonal|alternating|crossed"),
+                      "How a generated rectangle splits each square.");
+    prm.declare_entry("Length x", "1", Patterns::Double(0), "Plate size in x.");
+    prm.declare_entry("Length y", "1", Patterns::Double(0), "Plate size in y.");
+    prm.declare_entry("Subdivisions x",
+                      "4",
+                      Patterns::Integer(1),
+                      "Squares along x at refinement level 0.");
+    prm.declare_entry("Subdivisions y",
+                      "4",
+                      Patterns::Integer(1),
+                      "Squares along y at refinement level 0.");
+    prm.declare_entry("Refinement levels",
+                      "0",
+                      Patterns::List(Patterns::Integer(0, 12), 1),
+                      "Levels to run; more than one makes a refinement study "
+                      "that writes convergence.csv. Each level halves h.");
+    prm.declare_entry("Normal reference",
+                      "0, 0, 1",
+                      Patterns::List(Patterns::Double(), 3, 3),
+                      "Cell normals are made consistent across edges and "
+                      "each connected patch is turned to face this "
+                      "direction; pressure acts along these normals.");
+    prm.leave_subsection();
+  }
+
+  namespace
+  {
+    std::string resolve_path(const std::string &file,
+                             const std::string &prm_directory)
+    {
+      if (file.empty() || std::filesystem::path(file).is_absolute() ||
+          std::filesystem::exists(file))
+        return file;
+      const auto beside_prm = std::filesystem::path(prm_directory) / file;
+      return std::filesystem::exists(beside_prm) ? beside_prm.string() : file;
+    }
+  } // namespace
+
+  void MeshParameters::parse_parameters(ParameterHandler  &prm,
+                                        const std::string &prm_directory)
+  {
+    prm.enter_subsection("Mesh");
+    source    = prm.get("Source");
+    gmsh_file = resolve_path(prm.get("Gmsh file"), prm_directory);
+    pattern   = parse_triangle_pattern(prm.get("Triangle pattern"));
+    length_x  = prm.get_double("Length x");
+    length_y  = prm.get_double("Length y");
+    subdivisions_x = prm.get_integer("Subdivisions x");
+    subdivisions_y = prm.get_integer("Subdivisions y");
+    refinement_levels.clear();
+    for (const int level :
+         Utilities::string_to_int(Utilities::split_string_list(
+           prm.get("Refinement levels"))))
+      refinement_levels.push_back(level);
+    const std::vector<double> normal = Utilities::string_to_double(
+      Utilities::split_string_list(prm.get("Normal reference")));
+    normal_reference = Tensor<1, 3>({normal[0], normal[1], normal[2]});
+    prm.leave_subsection();
+    if (source == "gmsh" && gmsh_file.empty())
+      throw std::invalid_argument(
+        "Mesh/Gmsh file must be set when Mesh/Source = gmsh");
+    if (source == "rectangle" && !(length_x > 0 && length_y > 0))
+      throw std::invalid_argument("Mesh/Length x and Length y must be > 0");
+  }
+
+  void MeshParameters::build(Surface &surface, unsigned int level) const
+  {
+    const unsigned int factor = 1u << level;
+    if (source == "rectangle")
+      make_rectangle(surface,
+                     length_x,
+                     length_y,
+                     subdivisions_x * factor,
+                     subdivisions_y * factor,
+                     pattern);
+    else if (std::filesystem::path(gmsh_file).extension() == ".geo")
+      read_gmsh(surface, gmsh_file, 1.0 / factor);
+    else
+      {
+        read_gmsh(surface, gmsh_file, 1.0);
+        surface.refine_global(level);
+      }
+    check_cells(surface);
+  }
+} // namespace coshell::mesh

@@ -1,0 +1,88 @@
+#include <coshell/model/element_parameters.h>
+
+#include <stdexcept>
+
+namespace coshell::model
+{
+  using namespace dealii;
+
+  void ElementParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Material");
+    prm.declare_entry("Young's modulus", "1", Patterns::Double(),
+                      "E, > 0.");
+    prm.declare_entry("Poisson's ratio", "0.3", Patterns::Double(),
+                      "nu, in (-1, 0.5).");
+    prm.declare_entry("Thickness", "0.01", Patterns::Double(), "h, > 0.");
+    prm.declare_entry("Density", "0", Patterns::Double(),
+                      "Mass per unit volume, >= 0; used by gravity loads.");
+    prm.leave_subsection();
+
+    prm.enter_subsection("Element");
+    prm.declare_entry("Formulation", "linear", Patterns::Selection("linear"),
+                      "Kinematics: linear (small displacements).");
+    prm.declare_entry("Membrane element", "cst", Patterns::Selection("cst|off"),
+                      "In-plane part of the flat shell triangle: the "
+                      "constant-strain triangle, or off (no membrane "
+                      "stiffness, as in the paper's Table 1 runs).");
+    prm.declare_entry("Bending element", "dkt",
+                      Patterns::Selection("dkt|przemieniecki|off"),
+                      "Plate-bending part: the Discrete Kirchhoff Triangle, "
+                      "the paper's modified Przemieniecki incomplete cubic "
+                      "(x axis along edge AB = vertex 0 -> 1), or off.");
+    prm.declare_entry("Drilling stiffness factor", "1e-3", Patterns::Double(0),
+                      "Dimensionless penalty tying each nodal drilling "
+                      "rotation to the membrane's in-plane rotation, "
+                      "k = factor * E h A / 3 (see doc/theory.md).");
+    prm.leave_subsection();
+  }
+
+  void ElementParameters::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Material");
+    material.youngs_modulus = prm.get_double("Young's modulus");
+    material.poisson_ratio  = prm.get_double("Poisson's ratio");
+    material.thickness      = prm.get_double("Thickness");
+    material.density        = prm.get_double("Density");
+    prm.leave_subsection();
+    try
+      {
+        material.validate();
+      }
+    catch (const std::invalid_argument &error)
+      {
+        throw std::invalid_argument(std::string("subsection Material: ") +
+                                    error.what());
+      }
+
+    prm.enter_subsection("Element");
+    formulation = Formulation::linear;
+    const std::string membrane = prm.get("Membrane element");
+    options.membrane =
+      membrane == "off" ? std::nullopt :
+                          std::optional(element::MembraneElement::cst);
+    const std::string bending = prm.get("Bending element");
+    if (bending == "off")
+      options.bending = std::nullopt;
+    else
+      options.bending = bending == "dkt" ? element::BendingElement::dkt :
+                                           element::BendingElement::przemieniecki;
+    options.drilling_factor = prm.get_double("Drilling stiffness factor");
+    prm.leave_subsection();
+    if (!options.membrane && !options.bending)
+      throw std::invalid_argument("subsection Element: Membrane element and "
+                                  "Bending element are both off; nothing "
+                                  "would resist any load");
+  }
+
+  std::string ElementParameters::element_name() const
+  {
+    const std::string membrane = options.membrane ? "cst" : "nomembrane";
+    std::string       bending  = "nobending";
+    if (options.bending)
+      bending = *options.bending == element::BendingElement::dkt ?
+                  "dkt" :
+                  "przemieniecki";
+    return membrane + "+" + bending;
+  }
+} // namespace coshell::model

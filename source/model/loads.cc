@@ -1,0 +1,130 @@
+#include <coshell/model/loads.h>
+
+#include <deal.II/base/utilities.h>
+
+#include <sstream>
+#include <stdexcept>
+
+namespace coshell::model
+{
+  using namespace dealii;
+
+  namespace
+  {
+    std::vector<double> parse_three_numbers(const std::string &text)
+    {
+      std::istringstream  in(text);
+      std::vector<double> numbers;
+      double              x;
+      while (in >> x)
+        numbers.push_back(x);
+      if (!in.eof() || numbers.size() != 3)
+        throw std::invalid_argument("'" + Utilities::trim(text) +
+                                    "' is not three numbers");
+      return numbers;
+    }
+
+    void add_at_vertex(const ShellModel     &model,
+                       const PointLoad      &load,
+                       unsigned int          first_component,
+                       Vector<double>       &rhs,
+                       std::ostream         &log)
+    {
+      const unsigned int v    = model.nearest_vertex(load.where);
+      const auto        &dofs = model.vertex_dofs(v);
+      for (unsigned int d = 0; d < 3; ++d)
+        rhs[dofs[first_component + d]] += load.value[d];
+      log << "  point load at (" << load.where << ") applied at vertex " << v
+          << " (" << model.surface().get_vertices()[v] << ")\n";
+    }
+  } // namespace
+
+  std::vector<PointLoad> parse_point_loads(const std::string &text)
+  {
+    std::vector<PointLoad> loads;
+    for (const auto &entry : Utilities::split_string_list(text, ';'))
+      {
+        const auto parts = Utilities::split_string_list(entry, ':');
+        if (parts.size() != 2)
+          throw std::invalid_argument("point load '" + entry +
+                                      "' is not of the form 'x y z : vx vy vz'");
+        const auto where = parse_three_numbers(parts[0]);
+        const auto value = parse_three_numbers(parts[1]);
+        loads.push_back({Point<3>(where[0], where[1], where[2]),
+                         Tensor<1, 3>({value[0], value[1], value[2]})});
+      }
+    return loads;
+  }
+
+  void Loads::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Loads");
+    prm.declare_entry("Pressure", "0", Patterns::Double(),
+                      "Uniform pressure (force per unit area) along the "
+                      "oriented cell normal, lumped to the vertices.");
+    prm.declare_entry("Gravity", "0, 0, 0",
+                      Patterns::List(Patterns::Double(), 3, 3),
+                      "Acceleration vector; the load is density * thickness "
+                      "* area * g, lumped to the vertices.");
+    prm.declare_entry("Point forces", "", Patterns::Anything(),
+                      "Forces at the vertex nearest each point, as "
+                      "'x y z : fx fy fz' entries separated by ';'.");
+    prm.declare_entry("Point moments", "", Patterns::Anything(),
+                      "Moments at the vertex nearest each point, as "
+                      "'x y z : mx my mz' entries separated by ';'.");
+    prm.declare_entry("Load factor", "1", Patterns::Double(),
+                      "Multiplies every load above.");
+    prm.leave_subsection();
+  }
+
+  void Loads::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Loads");
+    pressure = prm.get_double("Pressure");
+    const auto g =
+      Utilities::string_to_double(Utilities::split_string_list(prm.get("Gravity")));
+    gravity = Tensor<1, 3>({g[0], g[1], g[2]});
+    scale   = prm.get_double("Load factor");
+    try
+      {
+        point_forces  = parse_point_loads(prm.get("Point forces"));
+        point_moments = parse_point_loads(prm.get("Point moments"));
+      }
+    catch (const std::invalid_argument &error)
+      {
+        prm.leave_subsection();
+        throw std::invalid_argument(std::string("Loads: ") + error.what());
+      }
+    prm.leave_subsection();
+  }
+
+  void Loads::add_distributed(const ShellModel &model, Vector<double> &rhs) const
+  {
+    const auto  &material = model.element_parameters().material;
+    const double areal_mass = material.density * material.thickness;
+    for (const auto &cell : model.dof_handler().active_cell_iterators())
+      {
+        const Tensor<1, 3> force_per_area =
+          pressure * model.unit_normal(cell) + areal_mass * gravity;
+        const Tensor<1, 3> vertex_force =
+          force_per_area * element::area(model.triangle(cell)) / 3.0;
+        for (unsigned int v = 0; v < 3; ++v)
+          for (unsigned int d = 0; d < 3; ++d)
+            rhs[cell->vertex_dof_index(v, d)] += vertex_force[d];
+      }
+  }
+
+  void Loads::assemble(const ShellModel &model,
+                       Vector<double>   &rhs,
+                       std::ostream     &log) const
+  {
+    Vector<double> load(rhs.size());
+    if (pressure != 0 || gravity.norm() != 0)
+      add_distributed(model, load);
+    for (const auto &force : point_forces)
+      add_at_vertex(model, force, ux, load, log);
+    for (const auto &moment : point_moments)
+      add_at_vertex(model, moment, rx, load, log);
+    rhs.add(scale, load);
+  }
+} // namespace coshell::model

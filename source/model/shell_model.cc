@@ -1,0 +1,220 @@
+#include <coshell/model/shell_model.h>
+
+#include <deal.II/base/work_stream.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_simplex_p.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+namespace coshell::model
+{
+  using namespace dealii;
+
+  Component parse_component(const std::string &name)
+  {
+    static const std::array<std::string, dofs_per_vertex> names = {
+      "ux", "uy", "uz", "rx", "ry", "rz"};
+    for (unsigned int c = 0; c < dofs_per_vertex; ++c)
+      if (name == names[c])
+        return static_cast<Component>(c);
+    throw std::invalid_argument("unknown component '" + name +
+                                "' (expected ux, uy, uz, rx, ry or rz)");
+  }
+
+  std::string component_name(unsigned int component)
+  {
+    static const std::array<std::string, dofs_per_vertex> names = {
+      "ux", "uy", "uz", "rx", "ry", "rz"};
+    return names.at(component);
+  }
+
+  ShellModel::ShellModel(const mesh::Surface     &surface,
+                         const ElementParameters &element,
+                         const Tensor<1, 3>      &normal_reference)
+    : surface_(surface)
+    , element_(element)
+    , fe_(FE_SimplexP<2, 3>(1), dofs_per_vertex)
+    , dof_handler_(surface)
+    , normal_sign_(mesh::orient_normals(surface, normal_reference))
+  {
+    // The kernels number DoFs as 6*vertex + component; make sure deal.II
+    // agrees so that element matrices scatter without permutation.
+    for (unsigned int i = 0; i < fe_.n_dofs_per_cell(); ++i)
+      if (fe_.system_to_component_index(i) !=
+          std::make_pair(i % dofs_per_vertex, i / dofs_per_vertex))
+        throw std::logic_error("unexpected cell-local DoF order in FESystem");
+    dof_handler_.distribute_dofs(fe_);
+    number_vertex_dofs();
+  }
+
+  void ShellModel::number_vertex_dofs()
+  {
+    const global_dof_index invalid = numbers::invalid_dof_index;
+    VertexDofs             unused;
+    unused.fill(invalid);
+    vertex_dofs_.assign(surface_.n_vertices(), unused);
+    for (const auto &cell : dof_handler_.active_cell_iterators())
+      for (unsigned int v = 0; v < cell->n_vertices(); ++v)
+        for (unsigned int c = 0; c < dofs_per_vertex; ++c)
+          vertex_dofs_[cell->vertex_index(v)][c] = cell->vertex_dof_index(v, c);
+  }
+
+  const DoFHandler<2, 3> &ShellModel::dof_handler() const
+  {
+    return dof_handler_;
+  }
+
+  const mesh::Surface &ShellModel::surface() const
+  {
+    return surface_;
+  }
+
+  const ElementParameters &ShellModel::element_parameters() const
+  {
+    return element_;
+  }
+
+  global_dof_index ShellModel::n_dofs() const
+  {
+    return dof_handler_.n_dofs();
+  }
+
+  const VertexDofs &ShellModel::vertex_dofs(unsigned int v) const
+  {
+    return vertex_dofs_.at(v);
+  }
+
+  bool ShellModel::vertex_is_used(unsigned int v) const
+  {
+    return vertex_dofs_.at(v)[0] != numbers::invalid_dof_index;
+  }
+
+  unsigned int ShellModel::nearest_vertex(const Point<3> &point) const
+  {
+    unsigned int best          = numbers::invalid_unsigned_int;
+    double       best_distance = std::numeric_limits<double>::max();
+    const auto  &vertices      = surface_.get_vertices();
+    for (unsigned int v = 0; v < vertices.size(); ++v)
+      if (vertex_is_used(v) && vertices[v].distance(point) < best_distance)
+        {
+          best          = v;
+          best_distance = vertices[v].distance(point);
+        }
+    return best;
+  }
+
+  element::SpatialTriangle ShellModel::triangle(const CellIterator &cell) const
+  {
+    return {cell->vertex(0), cell->vertex(1), cell->vertex(2)};
+  }
+
+  Tensor<1, 3> ShellModel::unit_normal(const CellIterator &cell) const
+  {
+    const Tensor<1, 3> n = cross_product_3d(cell->vertex(1) - cell->vertex(0),
+                                            cell->vertex(2) - cell->vertex(0));
+    return normal_sign_[cell->active_cell_index()] * n / n.norm();
+  }
+
+  void ShellModel::make_sparsity(const AffineConstraints<double> &constraints,
+                                 SparsityPattern &pattern) const
+  {
+    DynamicSparsityPattern dsp(n_dofs());
+    DoFTools::make_sparsity_pattern(dof_handler_, dsp, constraints, false);
+    pattern.copy_from(dsp);
+  }
+
+  namespace
+  {
+    struct AssemblyScratch
+    {};
+
+    struct AssemblyCopy
+    {
+      FullMatrix<double>            matrix;
+      std::vector<global_dof_index> dofs = std::vector<global_dof_index>(element::shell_dofs);
+      std::string                   error;
+    };
+  } // namespace
+
+  void ShellModel::assemble_stiffness(const AffineConstraints<double> &constraints,
+                                      SparseMatrix<double> &matrix) const
+  {
+    matrix = 0;
+    std::string first_error;
+    // Errors are carried to the copier: an exception thrown inside a
+    // WorkStream worker would abort the program without a useful message.
+    const auto worker = [this](const CellIterator &cell,
+                               AssemblyScratch &,
+                               AssemblyCopy &copy) {
+      copy.error.clear();
+      cell->get_dof_indices(copy.dofs);
+      try
+        {
+          copy.matrix = element::shell_stiffness(triangle(cell),
+                                                 element_.material,
+                                                 element_.options);
+        }
+      catch (const std::exception &error)
+        {
+          std::ostringstream message;
+          message << "element " << cell->active_cell_index() << " at ("
+                  << cell->center() << "): " << error.what();
+          copy.error = message.str();
+        }
+    };
+    const auto copier = [&](const AssemblyCopy &copy) {
+      if (!copy.error.empty())
+        {
+          if (first_error.empty())
+            first_error = copy.error;
+          return;
+        }
+      constraints.distribute_local_to_global(copy.matrix, copy.dofs, matrix);
+    };
+    WorkStream::run(dof_handler_.begin_active(),
+                    dof_handler_.end(),
+                    worker,
+                    copier,
+                    AssemblyScratch(),
+                    AssemblyCopy());
+    if (!first_error.empty())
+      throw std::runtime_error(first_error);
+  }
+
+  element::ShellDisplacements
+  ShellModel::cell_values(const CellIterator &cell, const Vector<double> &u) const
+  {
+    std::vector<global_dof_index> dofs(element::shell_dofs);
+    cell->get_dof_indices(dofs);
+    element::ShellDisplacements values;
+    for (unsigned int i = 0; i < element::shell_dofs; ++i)
+      values[i] = u[dofs[i]];
+    return values;
+  }
+
+  std::vector<element::ShellResultants>
+  ShellModel::resultants(const Vector<double> &solution) const
+  {
+    std::vector<element::ShellResultants> result(surface_.n_active_cells());
+    for (const auto &cell : dof_handler_.active_cell_iterators())
+      {
+        auto &r = result[cell->active_cell_index()];
+        r       = element::shell_resultants(triangle(cell),
+                                      element_.material,
+                                      element_.options,
+                                      cell_values(cell, solution));
+        // Moments are measured with z along the oriented normal, which may
+        // be opposite to the element frame's e3.
+        if (normal_sign_[cell->active_cell_index()] < 0)
+          {
+            r.bending_global *= -1;
+            for (double &m : r.bending_local)
+              m = -m;
+          }
+      }
+    return result;
+  }
+} // namespace coshell::model

@@ -1,0 +1,140 @@
+#include <coshell/solvers/linear_solver.h>
+
+#include <deal.II/base/index_set.h>
+#include <deal.II/lac/solver_cg.h>
+#include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/sparse_direct.h>
+#include <deal.II/lac/trilinos_precondition.h>
+#include <deal.II/lac/trilinos_solver.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <stdexcept>
+
+namespace coshell::solvers
+{
+  using namespace dealii;
+
+  /// Whatever each method keeps between factorize() and solve().
+  struct LinearSolver::Backend
+  {
+    SparseDirectUMFPACK                          umfpack;
+    TrilinosWrappers::SparseMatrix               trilinos_matrix;
+    SolverControl                                direct_control;
+    std::unique_ptr<TrilinosWrappers::SolverDirect>    trilinos_direct;
+    std::unique_ptr<TrilinosWrappers::PreconditionAMG> amg;
+    IndexSet                                     all_rows;
+
+    TrilinosWrappers::MPI::Vector to_trilinos(const Vector<double> &v) const
+    {
+      TrilinosWrappers::MPI::Vector result(all_rows, MPI_COMM_SELF);
+      for (unsigned int i = 0; i < v.size(); ++i)
+        result[i] = v[i];
+      result.compress(VectorOperation::insert);
+      return result;
+    }
+  };
+
+  LinearSolver::LinearSolver()
+    : backend_(std::make_unique<Backend>())
+  {}
+
+  LinearSolver::~LinearSolver() = default;
+
+  void LinearSolver::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Linear solver");
+    prm.declare_entry("Method", "umfpack",
+                      Patterns::Selection("umfpack|amesos-klu|cg-amg"),
+                      "umfpack: deal.II's sparse direct LU (SuiteSparse); "
+                      "amesos-klu: Trilinos Amesos KLU direct solver; "
+                      "cg-amg: conjugate gradients with Trilinos ML algebraic "
+                      "multigrid (slow on thin shells unless tuned).");
+    prm.declare_entry("Tolerance", "1e-10", Patterns::Double(0),
+                      "Relative residual tolerance of iterative methods.");
+    prm.declare_entry("Maximum iterations", "10000", Patterns::Integer(1),
+                      "Iteration limit of iterative methods.");
+    prm.leave_subsection();
+  }
+
+  void LinearSolver::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Linear solver");
+    method_         = prm.get("Method");
+    tolerance_      = prm.get_double("Tolerance");
+    max_iterations_ = prm.get_integer("Maximum iterations");
+    prm.leave_subsection();
+  }
+
+  void LinearSolver::factorize(const SparseMatrix<double> &matrix)
+  {
+    if (method_ == "umfpack")
+      {
+        backend_->umfpack.initialize(matrix);
+        return;
+      }
+    backend_->all_rows = complete_index_set(matrix.m());
+    backend_->trilinos_matrix.reinit(matrix);
+    if (method_ == "amesos-klu")
+      {
+        backend_->trilinos_direct = std::make_unique<TrilinosWrappers::SolverDirect>(
+          backend_->direct_control,
+          TrilinosWrappers::SolverDirect::AdditionalData(false, "Amesos_Klu"));
+        backend_->trilinos_direct->initialize(backend_->trilinos_matrix);
+      }
+    else
+      {
+        TrilinosWrappers::PreconditionAMG::AdditionalData data;
+        data.elliptic = true;
+        backend_->amg  = std::make_unique<TrilinosWrappers::PreconditionAMG>();
+        backend_->amg->initialize(backend_->trilinos_matrix, data);
+      }
+  }
+
+  void LinearSolver::solve(Vector<double> &x, const Vector<double> &b)
+  {
+    if (method_ == "umfpack")
+      {
+        x = b;
+        backend_->umfpack.solve(x);
+        last_iterations_ = 1;
+        return;
+      }
+    const TrilinosWrappers::MPI::Vector rhs = backend_->to_trilinos(b);
+    TrilinosWrappers::MPI::Vector       solution(backend_->all_rows, MPI_COMM_SELF);
+    if (method_ == "amesos-klu")
+      {
+        backend_->trilinos_direct->solve(solution, rhs);
+        last_iterations_ = 1;
+      }
+    else
+      {
+        SolverControl control(max_iterations_, tolerance_ * b.l2_norm());
+        SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
+        try
+          {
+            cg.solve(backend_->trilinos_matrix, solution, rhs, *backend_->amg);
+          }
+        catch (const SolverControl::NoConvergence &failure)
+          {
+            throw std::runtime_error(
+              "Linear solver/Method = cg-amg did not converge in " +
+              std::to_string(failure.last_step) + " iterations (residual " +
+              std::to_string(failure.last_residual) + ")");
+          }
+        last_iterations_ = control.last_step();
+      }
+    for (unsigned int i = 0; i < x.size(); ++i)
+      x[i] = solution[i];
+  }
+
+  const std::string &LinearSolver::method() const
+  {
+    return method_;
+  }
+
+  unsigned int LinearSolver::last_iterations() const
+  {
+    return last_iterations_;
+  }
+} // namespace coshell::solvers
