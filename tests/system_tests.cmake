@@ -1,0 +1,35 @@
+# prm-driven system tests. Each runs coshell on a scene from prm/ and checks
+# the result against a reference stated here, on the test's command line.
+
+set(COSHELL_RUN_AND_CHECK ${CMAKE_CURRENT_SOURCE_DIR}/scripts/run_and_check.py)
+set(COSHELL_EXPECT_FAILURE ${CMAKE_CURRENT_SOURCE_DIR}/scripts/expect_failure.py)
+set(COSHELL_PRM ${CMAKE_SOURCE_DIR}/prm)
+
+# coshell_scene_test(NAME PRM [LABELS l...] ARGS run_and_check arguments...)
+function(coshell_scene_test name prm)
+  cmake_parse_arguments(T "" "" "LABELS;ARGS" ${ARGN})
+  add_test(NAME ${name}
+           COMMAND ${COSHELL_PYTHON} ${COSHELL_RUN_AND_CHECK}
+                   --coshell $<TARGET_FILE:coshell>
+                   --prm ${COSHELL_PRM}/${prm}
+                   --output ${CMAKE_CURRENT_BINARY_DIR}/output/${name}
+                   ${T_ARGS})
+  if(NOT T_LABELS)
+    set(T_LABELS system)
+  endif()
+  set_tests_properties(${name} PROPERTIES LABELS "${T_LABELS}")
+endfunction()
+
+# coshell_bad_input_test(NAME PATTERN coshell arguments...)
+function(coshell_bad_input_test name pattern)
+  add_test(NAME bad_input.${name}
+           COMMAND ${COSHELL_PYTHON} ${COSHELL_EXPECT_FAILURE}
+                   --pattern ${pattern}
+                   --output ${CMAKE_CURRENT_BINARY_DIR}/output/bad_input.${name}
+                   -- $<TARGET_FILE:coshell> ${ARGN}
+                   --output ${CMAKE_CURRENT_BINARY_DIR}/output/bad_input.${name})
+  set_tests_properties(bad_input.${name} PROPERTIES LABELS "bad_input")
+endfunction()
+
+include(${CMAKE_CURRENT_SOURCE_DIR}/plate_tests.cmake)
+include(${CMAKE_CURRENT_SOURCE_DIR}/bad_input_tests.cmake)

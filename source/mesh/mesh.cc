@@ -1,5 +1,6 @@
 #include <coshell/mesh/mesh.h>
 
+#include <deal.II/base/utilities.h>
 #include <deal.II/grid/grid_in.h>
 #include <deal.II/grid/tria_description.h>
 
@@ -128,7 +129,7 @@ namespace coshell::mesh
 
   namespace
   {
-    std::string mesh_geo_file(const std::string &geo_file, double length_scale)
+    std::string mesh_geo_file(const std::string &geo_file, unsigned int level)
     {
       static unsigned int geo_meshes_made = 0;
       const auto output = std::filesystem::temp_directory_path() /
@@ -137,7 +138,8 @@ namespace coshell::mesh
                            std::filesystem::path(geo_file).stem().string() +
                            ".msh");
       std::ostringstream command;
-      command << "gmsh -2 -format msh2 -v 1 -clscale " << length_scale
+      command << "gmsh -2 -format msh2 -v 1 -setnumber refinement_level "
+              << level
               << " -o '" << output.string() << "' '" << geo_file
               << "' > /dev/null 2>&1";
       if (std::system(command.str().c_str()) != 0 ||
@@ -162,20 +164,22 @@ namespace coshell::mesh
         }
       catch (const ExceptionBase &error)
         {
+          std::ostringstream details;
+          error.print_info(details);
           throw std::runtime_error("cannot read gmsh mesh '" + file +
-                                   "': " + error.get_exc_name());
+                                   "': " + Utilities::trim(details.str()));
         }
     }
   } // namespace
 
-  void read_gmsh(Surface &surface, const std::string &file, double length_scale)
+  void read_gmsh(Surface &surface, const std::string &file, unsigned int level)
   {
     if (!std::filesystem::exists(file))
       throw std::runtime_error("mesh file '" + file + "' does not exist");
     surface.clear();
     if (std::filesystem::path(file).extension() == ".geo")
       {
-        const std::string msh = mesh_geo_file(file, length_scale);
+        const std::string msh = mesh_geo_file(file, level);
         try
           {
             read_msh_file(surface, msh);

@@ -23,7 +23,8 @@ namespace coshell::mesh
                       Patterns::Anything(),
                       "A .msh file (read as is, then refined globally per "
                       "level) or a .geo file (meshed by gmsh for each level "
-                      "with lengths scaled by 2^-level). Relative paths are "
+                      "with the gmsh constant refinement_level set to the "
+                      "level). Relative paths are "
                       "tried from the working directory, then from the "
                       "directory of the parameter file.");
     prm.declare_entry("Triangle pattern",
@@ -105,10 +106,10 @@ namespace coshell::mesh
                      subdivisions_y * factor,
                      pattern);
     else if (std::filesystem::path(gmsh_file).extension() == ".geo")
-      read_gmsh(surface, gmsh_file, 1.0 / factor);
+      read_gmsh(surface, gmsh_file, level);
     else
       {
-        read_gmsh(surface, gmsh_file, 1.0);
+        read_gmsh(surface, gmsh_file, 0);
         surface.refine_global(level);
       }
     check_cells(surface);

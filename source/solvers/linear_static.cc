@@ -1,3 +1,4 @@
+#include <coshell/model/rigid_body_modes.h>
 #include <coshell/solvers/linear_static.h>
 
 #include <cmath>
@@ -12,6 +13,7 @@ namespace coshell::solvers
     : model_(model)
     , constraints_(constraints)
   {
+    model::check_supports(model_, constraints_);
     model_.make_sparsity(constraints_, sparsity_);
     stiffness_.reinit(sparsity_);
     load_.reinit(model_.n_dofs());

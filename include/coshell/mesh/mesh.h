@@ -31,11 +31,13 @@ namespace coshell::mesh
                       TrianglePattern pattern);
 
   /// Reads a gmsh mesh. A ".msh" file is read as is; a ".geo" file is
-  /// meshed by the gmsh executable first, with its characteristic lengths
-  /// scaled by 'length_scale'. Physical surfaces become material ids,
+  /// meshed by the gmsh executable first, with the gmsh constant
+  /// 'refinement_level' set to 'level' (a .geo written for refinement
+  /// studies declares it with DefineConstant and scales its element sizes
+  /// by 2^-refinement_level). Physical surfaces become material ids,
   /// physical curves boundary ids. Throws std::runtime_error naming the
   /// file on any failure.
-  void read_gmsh(Surface &surface, const std::string &file, double length_scale);
+  void read_gmsh(Surface &surface, const std::string &file, unsigned int level);
 
   /// Checks that every cell is a triangle with a non-degenerate area;
   /// throws std::runtime_error naming the first bad cell and its vertices.
@@ -57,8 +59,8 @@ namespace coshell::mesh
                                  const std::string        &prm_directory);
 
     /// Builds the mesh of one refinement level: a generated rectangle gets
-    /// 2^level times the subdivisions, a .geo file is re-meshed with
-    /// lengths scaled by 2^-level, a .msh file is refined globally.
+    /// 2^level times the subdivisions, a .geo file is re-meshed by gmsh
+    /// with refinement_level = level, a .msh file is refined globally.
     void build(Surface &surface, unsigned int level) const;
   };
 

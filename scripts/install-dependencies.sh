@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages CoShell needs, only those missing
+# (idempotent). Needs root or sudo.
+set -euo pipefail
+
+packages=(
+  cmake g++ make git pkg-config
+  libdeal.ii-dev        # deal.II 9.4 with Trilinos, METIS, HDF5, SuiteSparse
+  libgtest-dev          # unit tests
+  gmsh                  # meshes .geo files
+  python3 python3-matplotlib  # test checkers and plots (/usr/bin/python3)
+  libopenblas0-pthread  # faster BLAS than the reference one for UMFPACK
+)
+
+missing=()
+for package in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$package")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-dependencies: all packages present"
+  exit 0
+fi
+
+as_root=()
+if [ "$(id -u)" -ne 0 ]; then
+  as_root=(sudo)
+fi
+echo "install-dependencies: installing ${missing[*]}"
+"${as_root[@]}" apt-get update -qq
+DEBIAN_FRONTEND=noninteractive "${as_root[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"

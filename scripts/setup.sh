@@ -1,0 +1,11 @@
+#!/usr/bin/env bash
+# First command: install what is missing, build (Release), run the default
+# scene (the paper's clamped square plate, refinement study) into
+# output/clamped_square_pressure.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+bash scripts/install-dependencies.sh
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
+cmake --build build -j "$(nproc)"
+./build/coshell prm/plates/clamped_square_pressure.prm

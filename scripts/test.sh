@@ -1,0 +1,10 @@
+#!/usr/bin/env bash
+# Second command: build and run the default ctest suite (the long studies
+# are labelled 'long' and excluded; run them with: ctest --test-dir build -L long).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+bash scripts/install-dependencies.sh
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
+cmake --build build -j "$(nproc)"
+ctest --test-dir build -j "$(nproc)" --output-on-failure -LE long

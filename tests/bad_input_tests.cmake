@@ -1,0 +1,47 @@
+# Every kind of bad input must give a clear message and a non-zero exit,
+# and leave no summary.json behind.
+set(plate ${COSHELL_PRM}/plates/clamped_square_pressure.prm)
+set(data ${CMAKE_CURRENT_SOURCE_DIR}/data)
+
+coshell_bad_input_test(missing_prm "cannot read parameter file .*no_such_file.prm"
+  ${data}/no_such_file.prm)
+coshell_bad_input_test(prm_is_directory "cannot read parameter file"
+  ${data})
+coshell_bad_input_test(unknown_parameter "unknown_parameter.prm.*Line <3>.*Stifness"
+  ${data}/unknown_parameter.prm)
+coshell_bad_input_test(ill_typed_value "ill_typed_value.prm.*Line <2>.*Thickness"
+  ${data}/ill_typed_value.prm)
+coshell_bad_input_test(unknown_set_parameter "--set 'Material/Stifness=1'.*Stifness"
+  ${plate} --set "Material/Stifness=1")
+coshell_bad_input_test(ill_typed_set_value "--set 'Mesh/Subdivisions x=four'"
+  ${plate} --set "Mesh/Subdivisions x=four")
+coshell_bad_input_test(missing_mesh "mesh file .*no_such_mesh.msh' does not exist"
+  ${plate} --set "Mesh/Source=gmsh" --set "Mesh/Gmsh file=${data}/no_such_mesh.msh")
+coshell_bad_input_test(unreadable_mesh "cannot read gmsh mesh .*not_a_mesh.msh"
+  ${plate} --set "Mesh/Source=gmsh" --set "Mesh/Gmsh file=${data}/not_a_mesh.msh")
+coshell_bad_input_test(degenerate_triangle "degenerate triangle: cell 1 with vertices"
+  ${plate} --set "Mesh/Source=gmsh" --set "Mesh/Gmsh file=${data}/degenerate_triangle.msh")
+coshell_bad_input_test(zero_thickness "Material: thickness h = 0 must be positive"
+  ${plate} --set "Material/Thickness=0")
+coshell_bad_input_test(negative_thickness "Material: thickness h = -0.1 must be positive"
+  ${plate} --set "Material/Thickness=-0.1")
+coshell_bad_input_test(zero_youngs_modulus "Material: Young's modulus E = 0 must be positive"
+  ${plate} --set "Material/Young's modulus=0")
+coshell_bad_input_test(poisson_ratio_too_large "Poisson's ratio = 0.5 is outside"
+  ${plate} --set "Material/Poisson's ratio=0.5")
+coshell_bad_input_test(poisson_ratio_too_small "Poisson's ratio = -1 is outside"
+  ${plate} --set "Material/Poisson's ratio=-1")
+coshell_bad_input_test(unknown_boundary_condition "unknown boundary condition 'glued'"
+  ${plate} --set "Boundary conditions/Conditions=0: glued")
+coshell_bad_input_test(boundary_id_not_in_mesh "boundary id 7, which the mesh does not have"
+  ${plate} --set "Boundary conditions/Conditions=7: clamped")
+coshell_bad_input_test(no_supports "6 rigid-body motion.s. free"
+  ${plate} --set "Boundary conditions/Conditions=")
+coshell_bad_input_test(bad_point_load "Loads: point load '1 2 : 0 0 1' .*three numbers"
+  ${plate} --set "Loads/Point forces=1 2 : 0 0 1")
+coshell_bad_input_test(both_parts_off "both off"
+  ${plate} --set "Element/Membrane element=off" --set "Element/Bending element=off")
+coshell_bad_input_test(unknown_command_line_option "unexpected argument '--frobnicate'"
+  ${plate} --frobnicate)
+coshell_bad_input_test(hinge_only "1 rigid-body motion.s. free.*translation z.*rotation y"
+  ${plate} --set "Boundary conditions/Conditions=0: fixed ux uy uz")

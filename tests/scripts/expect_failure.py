@@ -1,0 +1,43 @@
+#!/usr/bin/python3
+"""Runs a command that must fail cleanly: non-zero exit status, an error
+message matching a pattern on stderr, and no summary.json left behind.
+
+  expect_failure.py --pattern REGEX [--output DIR] -- command args...
+"""
+import argparse
+import os
+import re
+import shutil
+import subprocess
+import sys
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--pattern", required=True)
+    parser.add_argument("--output")
+    parser.add_argument("command", nargs=argparse.REMAINDER)
+    args = parser.parse_args()
+    command = [c for c in args.command if c != "--"]
+    if args.output and os.path.isdir(args.output):
+        shutil.rmtree(args.output)
+    result = subprocess.run(command, capture_output=True, text=True)
+    print("command:", " ".join(repr(c) for c in command))
+    print("exit status:", result.returncode)
+    print("stderr:", result.stderr.strip())
+    problems = []
+    if result.returncode == 0:
+        problems.append("exit status is 0")
+    if result.returncode < 0 or "Aborted" in result.stderr:
+        problems.append("the process crashed instead of reporting the error")
+    if not re.search(args.pattern, result.stderr):
+        problems.append(f"stderr does not match /{args.pattern}/")
+    if args.output and os.path.exists(os.path.join(args.output, "summary.json")):
+        problems.append("a summary.json was left behind")
+    for p in problems:
+        print("FAIL:", p)
+    sys.exit(1 if problems else 0)
+
+
+if __name__ == "__main__":
+    main()
