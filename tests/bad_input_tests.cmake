@@ -37,7 +37,7 @@ coshell_bad_input_test(boundary_id_not_in_mesh "boundary id 7, which the mesh do
   ${plate} --set "Boundary conditions/Conditions=7: clamped")
 coshell_bad_input_test(no_supports "6 rigid-body motion.s. free"
   ${plate} --set "Boundary conditions/Conditions=")
-coshell_bad_input_test(bad_point_load "Loads: point load '1 2 : 0 0 1' .*three numbers"
+coshell_bad_input_test(bad_point_load "Loads: point load '1 2 : 0 0 1'.*three numbers"
   ${plate} --set "Loads/Point forces=1 2 : 0 0 1")
 coshell_bad_input_test(both_parts_off "both off"
   ${plate} --set "Element/Membrane element=off" --set "Element/Bending element=off")

@@ -1,13 +1,97 @@
 # Linear plate benchmarks against analytic Kirchhoff plate solutions
 # (Timoshenko & Woinowsky-Krieger, Theory of Plates and Shells, 1959).
-set(levels "Mesh/Refinement levels=0,1,2,3,4")
+set(levels4 "Mesh/Refinement levels=0,1,2,3,4")
+set(no_vtu "Output/Write VTU=false")
 
 # Clamped square plate, uniform pressure: w = 0.126532 q (D = 100, L = 10).
-# DKT must converge at O(h^2) and reach 0.1 % at the finest level.
+# DKT converges at O(h^2) and reaches 0.1 % at the finest level on every
+# pattern. The paper's element converges to a wrong limit (it fails the
+# constant-curvature patch test): its error stays above 10 % and its
+# observed rate is about zero. That failure is asserted, not hidden.
 foreach(pattern crossed same-diagonal alternating)
   coshell_scene_test(clamped_square_pressure.dkt.${pattern}
     plates/clamped_square_pressure.prm
-    ARGS --set ${levels} --set "Mesh/Triangle pattern=${pattern}"
+    ARGS --set ${levels4} --set "Mesh/Triangle pattern=${pattern}" --set ${no_vtu}
          --value center_deflection 0.126532 1e-3
          --min-rate 1.8 --max-rate 2.2)
+  coshell_scene_test(clamped_square_pressure.przemieniecki.${pattern}
+    plates/clamped_square_pressure.prm
+    ARGS --set ${levels4} --set "Mesh/Triangle pattern=${pattern}" --set ${no_vtu}
+         --set "Element/Bending element=przemieniecki"
+         --error-above center_deflection 0.126532 0.10
+         --min-rate -0.2 --max-rate 0.2)
 endforeach()
+
+# Paper Table 1 (q = 1..5, bending only) with both elements, written next to
+# the paper's values.
+add_test(NAME paper_table1
+  COMMAND ${COSHELL_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/scripts/paper_table1.py
+          --coshell $<TARGET_FILE:coshell>
+          --prm ${COSHELL_PRM}/plates/clamped_square_pressure.prm
+          --output ${CMAKE_CURRENT_BINARY_DIR}/output/paper_table1
+          --csv ${CMAKE_CURRENT_BINARY_DIR}/output/paper_table1/table1.csv
+          --level 4 --tolerance dkt 1e-3 --expect-above przemieniecki 0.10)
+set_tests_properties(paper_table1 PROPERTIES LABELS system)
+
+# Quarter plate with symmetry conditions: same centre deflection.
+coshell_scene_test(quarter_clamped_square_pressure.dkt
+  plates/quarter_clamped_square_pressure.prm
+  ARGS --set ${levels4} --set ${no_vtu}
+       --value center_deflection 0.126532 1e-3 --min-rate 1.8 --max-rate 2.2)
+
+# Self weight instead of pressure: density 100, h = 0.1, g = -0.1 gives
+# q = -1, so w = -0.126532.
+coshell_scene_test(clamped_square_gravity.dkt
+  plates/clamped_square_pressure.prm
+  ARGS --set "Mesh/Refinement levels=4" --set ${no_vtu}
+       --set "Loads/Pressure=0" --set "Material/Density=100"
+       --set "Loads/Gravity=0, 0, -0.1"
+       --set "Quantities of interest/Reference values=center_deflection: -0.126532"
+       --value center_deflection -0.126532 1e-3)
+
+# Simply supported (hard) square plate, uniform pressure: w = 0.406235 q.
+coshell_scene_test(simply_supported_square_pressure.dkt
+  plates/simply_supported_square_pressure.prm
+  ARGS --set ${levels4} --set ${no_vtu}
+       --value center_deflection 0.406235 1e-3 --min-rate 1.8 --max-rate 2.2)
+
+# Central point load: w = 0.00560 P L^2/D clamped (three digits published;
+# the series value is 0.005612), 0.01160 P L^2/D simply supported.
+coshell_scene_test(clamped_square_point_load.dkt
+  plates/clamped_square_point_load.prm
+  ARGS --set ${levels4} --set ${no_vtu}
+       --value center_deflection 0.00560 5e-3
+       --value center_deflection 0.005612 1.5e-3)
+coshell_scene_test(simply_supported_square_point_load.dkt
+  plates/simply_supported_square_point_load.prm
+  ARGS --set ${levels4} --set ${no_vtu}
+       --value center_deflection 0.01160 1e-3)
+
+# Clamped circular plate on unstructured gmsh meshes: w = q a^4 / (64 D).
+coshell_scene_test(clamped_circular_pressure.dkt
+  plates/clamped_circular_pressure.prm
+  ARGS --set "Mesh/Refinement levels=0,1,2,3" --set ${no_vtu}
+       --value center_deflection 0.09765625 1e-3 --min-rate 1.5)
+
+# Clamped square plate on unstructured gmsh meshes.
+coshell_scene_test(clamped_square_pressure.dkt.unstructured
+  plates/clamped_square_pressure.prm
+  ARGS --set "Mesh/Source=gmsh"
+       --set "Mesh/Gmsh file=${CMAKE_SOURCE_DIR}/meshes/square_unstructured.geo"
+       --set "Mesh/Refinement levels=0,1,2,3" --set ${no_vtu}
+       --value center_deflection 0.126532 1e-3 --min-rate 1.5)
+
+# Cantilever strip under an end moment: constant curvature, which DKT
+# represents exactly, so beam theory is matched to round-off.
+coshell_scene_test(cantilever_end_moment_linear.dkt
+  plates/cantilever_end_moment_linear.prm
+  ARGS --set ${no_vtu}
+       --value tip_deflection 0.72 1e-9 --value tip_rotation -0.12 1e-9)
+
+# VTU/PVD output is written and names its fields.
+add_test(NAME vtu_output_fields
+  COMMAND ${COSHELL_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_vtu.py
+          --coshell $<TARGET_FILE:coshell>
+          --prm ${COSHELL_PRM}/plates/clamped_square_pressure.prm
+          --output ${CMAKE_CURRENT_BINARY_DIR}/output/vtu_output_fields)
+set_tests_properties(vtu_output_fields PROPERTIES LABELS system)

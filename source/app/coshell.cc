@@ -13,22 +13,24 @@
 namespace
 {
   const char *usage =
-    "usage: coshell FILE.prm [--set \"Section/Name=value\" ...] "
-    "[--output DIR]\n"
-    "       coshell --print-parameters [FILE.prm]\n"
-    "       coshell --help\n"
-    "\n"
-    "  FILE.prm              scene parameter file (deal.II ParameterHandler "
-    "format)\n"
-    "  --set \"A/B/Name=v\"    override one parameter (repeatable)\n"
-    "  --output DIR          write results to DIR (default: Output/Directory)\n"
-    "  --print-parameters    print every parameter with its default and\n"
-    "                        documentation, in .prm form (with FILE.prm: its\n"
-    "                        values)\n"
-    "  --help                this text\n"
-    "\n"
-    "Exit status: 0 on success, 1 on bad input or a failed solve, 2 on a "
-    "bad command line.\n";
+      "usage: coshell FILE.prm [--set \"Section/Name=value\" ...] "
+      "[--output DIR]\n"
+      "       coshell --print-parameters [FILE.prm]\n"
+      "       coshell --help\n"
+      "\n"
+      "  FILE.prm              scene parameter file (deal.II ParameterHandler "
+      "format)\n"
+      "  --set \"A/B/Name=v\"    override one parameter (repeatable)\n"
+      "  --output DIR          write results to DIR (default: "
+      "Output/Directory)\n"
+      "  --print-parameters    print every parameter with its default and\n"
+      "                        documentation, in .prm form (with FILE.prm: "
+      "its\n"
+      "                        values)\n"
+      "  --help                this text\n"
+      "\n"
+      "Exit status: 0 on success, 1 on bad input or a failed solve, 2 on a "
+      "bad command line.\n";
 
   struct CommandLine
   {
@@ -43,22 +45,22 @@ namespace
   {
     CommandLine line;
     for (int i = 1; i < argc; ++i)
-      {
-        const std::string arg = argv[i];
-        const bool has_value  = i + 1 < argc;
-        if (arg == "--help" || arg == "-h")
-          line.help = true;
-        else if (arg == "--print-parameters")
-          line.print_parameters = true;
-        else if (arg == "--set" && has_value)
-          line.overrides.push_back(argv[++i]);
-        else if (arg == "--output" && has_value)
-          line.output_directory = argv[++i];
-        else if (arg.rfind("-", 0) != 0 && line.prm_file.empty())
-          line.prm_file = arg;
-        else
-          throw std::invalid_argument("unexpected argument '" + arg + "'");
-      }
+    {
+      const std::string arg       = argv[i];
+      const bool        has_value = i + 1 < argc;
+      if (arg == "--help" || arg == "-h")
+        line.help = true;
+      else if (arg == "--print-parameters")
+        line.print_parameters = true;
+      else if (arg == "--set" && has_value)
+        line.overrides.push_back(argv[++i]);
+      else if (arg == "--output" && has_value)
+        line.output_directory = argv[++i];
+      else if (arg.rfind("-", 0) != 0 && line.prm_file.empty())
+        line.prm_file = arg;
+      else
+        throw std::invalid_argument("unexpected argument '" + arg + "'");
+    }
     return line;
   }
 } // namespace
@@ -66,45 +68,45 @@ namespace
 int main(int argc, char **argv)
 {
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  CommandLine line;
+  CommandLine                              line;
   try
+  {
+    line = parse_command_line(argc, argv);
+    if (line.help || (line.prm_file.empty() && !line.print_parameters))
     {
-      line = parse_command_line(argc, argv);
-      if (line.help || (line.prm_file.empty() && !line.print_parameters))
-        {
-          std::cout << usage;
-          return line.help ? 0 : 2;
-        }
+      std::cout << usage;
+      return line.help ? 0 : 2;
     }
+  }
   catch (const std::exception &error)
-    {
-      std::cerr << "coshell: " << error.what() << "\n\n" << usage;
-      return 2;
-    }
+  {
+    std::cerr << "coshell: " << error.what() << "\n\n" << usage;
+    return 2;
+  }
 
   try
+  {
+    dealii::ParameterHandler prm;
+    coshell::driver::Scene::declare_parameters(prm);
+    if (!line.prm_file.empty())
+      coshell::driver::read_parameters(prm, line.prm_file, line.overrides);
+    if (line.print_parameters)
     {
-      dealii::ParameterHandler prm;
-      coshell::driver::Scene::declare_parameters(prm);
-      if (!line.prm_file.empty())
-        coshell::driver::read_parameters(prm, line.prm_file, line.overrides);
-      if (line.print_parameters)
-        {
-          prm.print_parameters(std::cout, dealii::ParameterHandler::PRM);
-          return 0;
-        }
-      coshell::driver::Scene scene;
-      scene.parse_parameters(prm, line.prm_file);
-      const std::string output = line.output_directory.empty() ?
-                                   scene.output().directory :
-                                   line.output_directory;
-      scene.run(output, std::cout);
-      std::cout << "results written to " << output << "\n";
+      prm.print_parameters(std::cout, dealii::ParameterHandler::PRM);
+      return 0;
     }
+    coshell::driver::Scene scene;
+    scene.parse_parameters(prm, line.prm_file);
+    const std::string output = line.output_directory.empty()
+                                   ? scene.output().directory
+                                   : line.output_directory;
+    scene.run(output, std::cout);
+    std::cout << "results written to " << output << "\n";
+  }
   catch (const std::exception &error)
-    {
-      std::cerr << "coshell: error: " << error.what() << "\n";
-      return 1;
-    }
+  {
+    std::cerr << "coshell: error: " << error.what() << "\n";
+    return 1;
+  }
   return 0;
 }

@@ -10,7 +10,7 @@
 #include <stdexcept>
 
 #ifndef COSHELL_GIT_COMMIT
-#  define COSHELL_GIT_COMMIT "unknown"
+#define COSHELL_GIT_COMMIT "unknown"
 #endif
 
 namespace coshell::driver
@@ -33,21 +33,22 @@ namespace coshell::driver
       if (equal == std::string::npos)
         throw std::runtime_error("--set '" + assignment +
                                  "' is not of the form 'Section/Name=value'");
-      auto path = Utilities::split_string_list(assignment.substr(0, equal), '/');
+      auto path =
+          Utilities::split_string_list(assignment.substr(0, equal), '/');
       const std::string value = Utilities::trim(assignment.substr(equal + 1));
       for (unsigned int i = 0; i + 1 < path.size(); ++i)
         prm.enter_subsection(path[i]);
       try
-        {
-          prm.set(path.back(), value);
-        }
+      {
+        prm.set(path.back(), value);
+      }
       catch (const ExceptionBase &error)
-        {
-          for (unsigned int i = 0; i + 1 < path.size(); ++i)
-            prm.leave_subsection();
-          throw std::runtime_error("--set '" + assignment +
-                                   "': " + exception_details(error));
-        }
+      {
+        for (unsigned int i = 0; i + 1 < path.size(); ++i)
+          prm.leave_subsection();
+        throw std::runtime_error("--set '" + assignment +
+                                 "': " + exception_details(error));
+      }
       for (unsigned int i = 0; i + 1 < path.size(); ++i)
         prm.leave_subsection();
     }
@@ -56,7 +57,7 @@ namespace coshell::driver
     {
       return std::chrono::duration<double>(std::chrono::steady_clock::now() -
                                            start)
-        .count();
+          .count();
     }
 
     double longest_edge(const mesh::Surface &surface)
@@ -77,14 +78,14 @@ namespace coshell::driver
       throw std::runtime_error("cannot read parameter file '" + file +
                                "': no such readable file");
     try
-      {
-        prm.parse_input(file);
-      }
+    {
+      prm.parse_input(file);
+    }
     catch (const ExceptionBase &error)
-      {
-        throw std::runtime_error("parameter file '" + file +
-                                 "': " + exception_details(error));
-      }
+    {
+      throw std::runtime_error("parameter file '" + file +
+                               "': " + exception_details(error));
+    }
     for (const auto &assignment : overrides)
       apply_override(prm, assignment);
   }
@@ -100,11 +101,12 @@ namespace coshell::driver
     io::VtuOutput::declare_parameters(prm);
   }
 
-  void Scene::parse_parameters(ParameterHandler &prm, const std::string &prm_file)
+  void Scene::parse_parameters(ParameterHandler  &prm,
+                               const std::string &prm_file)
   {
     prm_file_ = prm_file;
     mesh_.parse_parameters(
-      prm, std::filesystem::path(prm_file).parent_path().string());
+        prm, std::filesystem::path(prm_file).parent_path().string());
     element_.parse_parameters(prm);
     boundary_conditions_.parse_parameters(prm);
     loads_.parse_parameters(prm);
@@ -122,11 +124,11 @@ namespace coshell::driver
                             const std::string &directory,
                             std::ostream      &log)
   {
-    const auto        start = std::chrono::steady_clock::now();
-    io::LevelResult   result;
-    mesh::Surface     surface;
+    const auto      start = std::chrono::steady_clock::now();
+    io::LevelResult result;
+    mesh::Surface   surface;
     mesh_.build(surface, level);
-    model::ShellModel model(surface, element_, mesh_.normal_reference);
+    model::ShellModel         model(surface, element_, mesh_.normal_reference);
     AffineConstraints<double> constraints;
     boundary_conditions_.make_constraints(model, constraints);
     constraints.close();
@@ -139,11 +141,11 @@ namespace coshell::driver
     analysis.assemble(loads_, log);
     result.wall_time_s.assemble = seconds_since(phase);
 
-    phase                          = std::chrono::steady_clock::now();
+    phase                         = std::chrono::steady_clock::now();
     const Vector<double> solution = analysis.solve(linear_solver_);
     result.wall_time_s.solve      = seconds_since(phase);
 
-    phase = std::chrono::steady_clock::now();
+    phase            = std::chrono::steady_clock::now();
     result.qoi       = quantities_.evaluate(model, solution);
     result.reference = quantities_.references();
     output_.write(model, solution, model.resultants(solution), directory);
@@ -174,27 +176,27 @@ namespace coshell::driver
     std::filesystem::remove(csv_file);
 
     levels_.clear();
-    const bool study = mesh_.refinement_levels.size() > 1;
-    io::Json   summary;
+    const bool      study = mesh_.refinement_levels.size() > 1;
+    io::Json        summary;
     io::Json::Array level_summaries;
     for (const unsigned int level : mesh_.refinement_levels)
-      {
-        const std::string directory =
-          study ? output_directory + "/level-" + std::to_string(level) :
-                  output_directory;
-        level_summaries.push_back(run_level(level, directory, log));
-        summary = level_summaries.back();
-      }
+    {
+      const std::string directory =
+          study ? output_directory + "/level-" + std::to_string(level)
+                : output_directory;
+      level_summaries.push_back(run_level(level, directory, log));
+      summary = level_summaries.back();
+    }
     summary["prm_file"]      = prm_file_;
     summary["commit"]        = COSHELL_GIT_COMMIT;
     summary["formulation"]   = "linear";
     summary["element"]       = element_.element_name();
     summary["linear_solver"] = linear_solver_.method();
     if (study)
-      {
-        summary["levels"] = level_summaries;
-        io::write_file_atomically(csv_file, io::convergence_csv(levels_));
-      }
+    {
+      summary["levels"] = level_summaries;
+      io::write_file_atomically(csv_file, io::convergence_csv(levels_));
+    }
     io::write_file_atomically(summary_file, summary.dump() + "\n");
     return summary;
   }

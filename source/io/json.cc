@@ -34,17 +34,17 @@ namespace coshell::io
       std::ostringstream out;
       out << '"';
       for (const char c : text)
-        {
-          if (c == '"' || c == '\\')
-            out << '\\' << c;
-          else if (c == '\n')
-            out << "\\n";
-          else if (static_cast<unsigned char>(c) < 0x20)
-            out << "\\u" << std::hex << std::setw(4) << std::setfill('0')
-                << static_cast<int>(c) << std::dec;
-          else
-            out << c;
-        }
+      {
+        if (c == '"' || c == '\\')
+          out << '\\' << c;
+        else if (c == '\n')
+          out << "\\n";
+        else if (static_cast<unsigned char>(c) < 0x20)
+          out << "\\u" << std::hex << std::setw(4) << std::setfill('0')
+              << static_cast<int>(c) << std::dec;
+        else
+          out << c;
+      }
       out << '"';
       return out.str();
     }
@@ -70,30 +70,30 @@ namespace coshell::io
       return quoted(std::get<std::string>(value_));
     std::ostringstream out;
     if (const auto *object = std::get_if<Object>(&value_))
+    {
+      out << "{";
+      const char *separator = "\n";
+      for (const auto &[key, value] : *object)
       {
-        out << "{";
-        const char *separator = "\n";
-        for (const auto &[key, value] : *object)
-          {
-            out << separator << pad << quoted(key) << ": "
-                << value.dump(indent + 2);
-            separator = ",\n";
-          }
-        out << (object->empty() ? "}" : "\n" + close_pad + "}");
-        return out.str();
+        out << separator << pad << quoted(key) << ": "
+            << value.dump(indent + 2);
+        separator = ",\n";
       }
+      out << (object->empty() ? "}" : "\n" + close_pad + "}");
+      return out.str();
+    }
     if (const auto *array = std::get_if<Array>(&value_))
+    {
+      out << "[";
+      const char *separator = "\n";
+      for (const auto &value : *array)
       {
-        out << "[";
-        const char *separator = "\n";
-        for (const auto &value : *array)
-          {
-            out << separator << pad << value.dump(indent + 2);
-            separator = ",\n";
-          }
-        out << (array->empty() ? "]" : "\n" + close_pad + "]");
-        return out.str();
+        out << separator << pad << value.dump(indent + 2);
+        separator = ",\n";
       }
+      out << (array->empty() ? "]" : "\n" + close_pad + "]");
+      return out.str();
+    }
     return "null";
   }
 

@@ -33,11 +33,11 @@ namespace coshell::io
     Json::Object qoi_json(qoi.begin(), qoi.end());
     json["qoi"] = qoi_json;
     if (!reference.empty())
-      {
-        json["reference"] = Json::Object(reference.begin(), reference.end());
-        const auto errors = relative_errors();
-        json["relative_error"] = Json::Object(errors.begin(), errors.end());
-      }
+    {
+      json["reference"]      = Json::Object(reference.begin(), reference.end());
+      const auto errors      = relative_errors();
+      json["relative_error"] = Json::Object(errors.begin(), errors.end());
+    }
     return json;
   }
 
@@ -75,28 +75,28 @@ namespace coshell::io
         csv << ',' << name << ',' << name << "_relative_error";
     csv << '\n' << std::setprecision(10);
     for (unsigned int k = 0; k < levels.size(); ++k)
+    {
+      const auto &l      = levels[k];
+      const auto  errors = l.relative_errors();
+      std::string rate;
+      if (k > 0 && errors.count(primary) &&
+          levels[k - 1].relative_errors().count(primary))
       {
-        const auto &l      = levels[k];
-        const auto  errors = l.relative_errors();
-        std::string rate;
-        if (k > 0 && errors.count(primary) &&
-            levels[k - 1].relative_errors().count(primary))
-          {
-            const double previous = levels[k - 1].relative_errors().at(primary);
-            std::ostringstream r;
-            r << std::log(previous / errors.at(primary)) /
-                   std::log(levels[k - 1].h / l.h);
-            rate = r.str();
-          }
-        csv << l.level << ',' << l.h << ',' << l.n_cells << ',' << l.n_dofs
-            << ',' << optional_number(l.qoi, primary) << ','
-            << optional_number(errors, primary) << ',' << rate << ','
-            << l.wall_time_s.total;
-        for (const auto &[name, value] : l.qoi)
-          if (name != primary)
-            csv << ',' << value << ',' << optional_number(errors, name);
-        csv << '\n';
+        const double previous = levels[k - 1].relative_errors().at(primary);
+        std::ostringstream r;
+        r << std::log(previous / errors.at(primary)) /
+                 std::log(levels[k - 1].h / l.h);
+        rate = r.str();
       }
+      csv << l.level << ',' << l.h << ',' << l.n_cells << ',' << l.n_dofs << ','
+          << optional_number(l.qoi, primary) << ','
+          << optional_number(errors, primary) << ',' << rate << ','
+          << l.wall_time_s.total;
+      for (const auto &[name, value] : l.qoi)
+        if (name != primary)
+          csv << ',' << value << ',' << optional_number(errors, name);
+      csv << '\n';
+    }
     return csv.str();
   }
 } // namespace coshell::io

@@ -32,21 +32,22 @@ namespace coshell::io
   namespace
   {
     /// One cell-data field per independent tensor component.
-    void add_tensor_fields(DataOut<2, 3>             &data_out,
+    void add_tensor_fields(DataOut<2, 3>                   &data_out,
                            const std::vector<Tensor<2, 3>> &tensors,
-                           const std::string         &symbol,
-                           std::vector<Vector<double>> &storage)
+                           const std::string               &symbol,
+                           std::vector<Vector<double>>     &storage)
     {
       static const std::array<std::pair<unsigned int, unsigned int>, 6>
-                                                 entries = {{{0, 0}, {1, 1}, {2, 2}, {0, 1}, {1, 2}, {0, 2}}};
-      static const std::array<std::string, 6> suffix  = {"xx", "yy", "zz", "xy", "yz", "xz"};
+          entries = {{{0, 0}, {1, 1}, {2, 2}, {0, 1}, {1, 2}, {0, 2}}};
+      static const std::array<std::string, 6> suffix = {
+          {"xx", "yy", "zz", "xy", "yz", "xz"}};
       for (unsigned int e = 0; e < entries.size(); ++e)
-        {
-          Vector<double> field(tensors.size());
-          for (unsigned int c = 0; c < tensors.size(); ++c)
-            field[c] = tensors[c][entries[e].first][entries[e].second];
-          storage.push_back(field);
-        }
+      {
+        Vector<double> field(tensors.size());
+        for (unsigned int c = 0; c < tensors.size(); ++c)
+          field[c] = tensors[c][entries[e].first][entries[e].second];
+        storage.push_back(field);
+      }
       for (unsigned int e = 0; e < entries.size(); ++e)
         data_out.add_data_vector(storage[storage.size() - entries.size() + e],
                                  symbol + "_" + suffix[e],
@@ -54,17 +55,19 @@ namespace coshell::io
     }
   } // namespace
 
-  std::string VtuOutput::write(const model::ShellModel         &model,
-                               const Vector<double>            &solution,
-                               const std::vector<element::ShellResultants> &resultants,
-                               const std::string               &output_directory) const
+  std::string
+  VtuOutput::write(const model::ShellModel                     &model,
+                   const Vector<double>                        &solution,
+                   const std::vector<element::ShellResultants> &resultants,
+                   const std::string &output_directory) const
   {
     if (!write_vtu_)
       return "";
     std::vector<std::string> names(3, "displacement");
     names.insert(names.end(), 3, "rotation");
     const std::vector<DataComponentInterpretation::DataComponentInterpretation>
-      interpretation(6, DataComponentInterpretation::component_is_part_of_vector);
+        interpretation(
+            6, DataComponentInterpretation::component_is_part_of_vector);
 
     DataOut<2, 3> data_out;
     data_out.attach_dof_handler(model.dof_handler());
@@ -73,10 +76,10 @@ namespace coshell::io
 
     std::vector<Tensor<2, 3>> membrane, bending;
     for (const auto &r : resultants)
-      {
-        membrane.push_back(r.membrane_global);
-        bending.push_back(r.bending_global);
-      }
+    {
+      membrane.push_back(r.membrane_global);
+      bending.push_back(r.bending_global);
+    }
     std::vector<Vector<double>> storage;
     storage.reserve(13);
     add_tensor_fields(data_out, membrane, "N", storage);
@@ -84,7 +87,8 @@ namespace coshell::io
     Vector<double> material(model.surface().n_active_cells());
     for (const auto &cell : model.surface().active_cell_iterators())
       material[cell->active_cell_index()] = cell->material_id();
-    data_out.add_data_vector(material, "material_id", DataOut<2, 3>::type_cell_data);
+    data_out.add_data_vector(material, "material_id",
+                             DataOut<2, 3>::type_cell_data);
 
     const MappingFE<2, 3> mapping(FE_SimplexP<2, 3>(1));
     data_out.build_patches(mapping);

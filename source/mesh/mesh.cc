@@ -41,22 +41,22 @@ namespace coshell::mesh
     /// Splits the square with corners (lower-left, lower-right, upper-left,
     /// upper-right) = (v00, v10, v01, v11) into counter-clockwise triangles.
     void split_square(std::vector<CellData<2>> &cells,
-                      unsigned int v00,
-                      unsigned int v10,
-                      unsigned int v01,
-                      unsigned int v11,
-                      bool         rising_diagonal)
+                      unsigned int              v00,
+                      unsigned int              v10,
+                      unsigned int              v01,
+                      unsigned int              v11,
+                      bool                      rising_diagonal)
     {
       if (rising_diagonal)
-        {
-          cells.push_back(triangle(v00, v10, v11));
-          cells.push_back(triangle(v00, v11, v01));
-        }
+      {
+        cells.push_back(triangle(v00, v10, v11));
+        cells.push_back(triangle(v00, v11, v01));
+      }
       else
-        {
-          cells.push_back(triangle(v00, v10, v01));
-          cells.push_back(triangle(v10, v11, v01));
-        }
+      {
+        cells.push_back(triangle(v00, v10, v01));
+        cells.push_back(triangle(v10, v11, v01));
+      }
     }
 
     void set_rectangle_boundary_ids(Surface &surface,
@@ -67,17 +67,17 @@ namespace coshell::mesh
       for (const auto &cell : surface.active_cell_iterators())
         for (const auto &face : cell->face_iterators())
           if (face->at_boundary())
-            {
-              const Point<3> c = face->center();
-              if (std::abs(c[0]) < tol)
-                face->set_boundary_id(0);
-              else if (std::abs(c[0] - length_x) < tol)
-                face->set_boundary_id(1);
-              else if (std::abs(c[1]) < tol)
-                face->set_boundary_id(2);
-              else
-                face->set_boundary_id(3);
-            }
+          {
+            const Point<3> c = face->center();
+            if (std::abs(c[0]) < tol)
+              face->set_boundary_id(0);
+            else if (std::abs(c[0] - length_x) < tol)
+              face->set_boundary_id(1);
+            else if (std::abs(c[1]) < tol)
+              face->set_boundary_id(2);
+            else
+              face->set_boundary_id(3);
+          }
     }
   } // namespace
 
@@ -92,9 +92,8 @@ namespace coshell::mesh
       throw std::invalid_argument("rectangle needs positive lengths and "
                                   "subdivisions");
     std::vector<Point<3>> vertices;
-    const auto grid_vertex = [n_x](unsigned int i, unsigned int j) {
-      return j * (n_x + 1) + i;
-    };
+    const auto            grid_vertex = [n_x](unsigned int i, unsigned int j)
+    { return j * (n_x + 1) + i; };
     for (unsigned int j = 0; j <= n_y; ++j)
       for (unsigned int i = 0; i <= n_x; ++i)
         vertices.emplace_back(length_x * i / n_x, length_y * j / n_y, 0.0);
@@ -102,26 +101,25 @@ namespace coshell::mesh
     std::vector<CellData<2>> cells;
     for (unsigned int j = 0; j < n_y; ++j)
       for (unsigned int i = 0; i < n_x; ++i)
+      {
+        const unsigned int v00 = grid_vertex(i, j), v10 = grid_vertex(i + 1, j),
+                           v01 = grid_vertex(i, j + 1),
+                           v11 = grid_vertex(i + 1, j + 1);
+        if (pattern == TrianglePattern::crossed)
         {
-          const unsigned int v00 = grid_vertex(i, j), v10 = grid_vertex(i + 1, j),
-                             v01 = grid_vertex(i, j + 1),
-                             v11 = grid_vertex(i + 1, j + 1);
-          if (pattern == TrianglePattern::crossed)
-            {
-              const unsigned int centre = vertices.size();
-              vertices.push_back(Point<3>(length_x * (i + 0.5) / n_x,
-                                          length_y * (j + 0.5) / n_y,
-                                          0.0));
-              cells.push_back(triangle(v00, v10, centre));
-              cells.push_back(triangle(v10, v11, centre));
-              cells.push_back(triangle(v11, v01, centre));
-              cells.push_back(triangle(v01, v00, centre));
-            }
-          else
-            split_square(cells, v00, v10, v01, v11,
-                         pattern == TrianglePattern::same_diagonal ||
-                           (i + j) % 2 == 0);
+          const unsigned int centre = vertices.size();
+          vertices.push_back(Point<3>(length_x * (i + 0.5) / n_x,
+                                      length_y * (j + 0.5) / n_y, 0.0));
+          cells.push_back(triangle(v00, v10, centre));
+          cells.push_back(triangle(v10, v11, centre));
+          cells.push_back(triangle(v11, v01, centre));
+          cells.push_back(triangle(v01, v00, centre));
         }
+        else
+          split_square(cells, v00, v10, v01, v11,
+                       pattern == TrianglePattern::same_diagonal ||
+                           (i + j) % 2 == 0);
+      }
     surface.clear();
     surface.create_triangulation(vertices, cells, SubCellData());
     set_rectangle_boundary_ids(surface, length_x, length_y);
@@ -132,15 +130,14 @@ namespace coshell::mesh
     std::string mesh_geo_file(const std::string &geo_file, unsigned int level)
     {
       static unsigned int geo_meshes_made = 0;
-      const auto output = std::filesystem::temp_directory_path() /
-                          ("coshell-" + std::to_string(::getpid()) + "-" +
-                           std::to_string(++geo_meshes_made) + "-" +
-                           std::filesystem::path(geo_file).stem().string() +
-                           ".msh");
+      const auto          output =
+          std::filesystem::temp_directory_path() /
+          ("coshell-" + std::to_string(::getpid()) + "-" +
+           std::to_string(++geo_meshes_made) + "-" +
+           std::filesystem::path(geo_file).stem().string() + ".msh");
       std::ostringstream command;
       command << "gmsh -2 -format msh2 -v 1 -setnumber refinement_level "
-              << level
-              << " -o '" << output.string() << "' '" << geo_file
+              << level << " -o '" << output.string() << "' '" << geo_file
               << "' > /dev/null 2>&1";
       if (std::system(command.str().c_str()) != 0 ||
           !std::filesystem::exists(output))
@@ -159,16 +156,16 @@ namespace coshell::mesh
       GridIn<2, 3> grid_in;
       grid_in.attach_triangulation(surface);
       try
-        {
-          grid_in.read_msh(input);
-        }
+      {
+        grid_in.read_msh(input);
+      }
       catch (const ExceptionBase &error)
-        {
-          std::ostringstream details;
-          error.print_info(details);
-          throw std::runtime_error("cannot read gmsh mesh '" + file +
-                                   "': " + Utilities::trim(details.str()));
-        }
+      {
+        std::ostringstream details;
+        error.print_info(details);
+        throw std::runtime_error("cannot read gmsh mesh '" + file +
+                                 "': " + Utilities::trim(details.str()));
+      }
     }
   } // namespace
 
@@ -178,19 +175,19 @@ namespace coshell::mesh
       throw std::runtime_error("mesh file '" + file + "' does not exist");
     surface.clear();
     if (std::filesystem::path(file).extension() == ".geo")
+    {
+      const std::string msh = mesh_geo_file(file, level);
+      try
       {
-        const std::string msh = mesh_geo_file(file, level);
-        try
-          {
-            read_msh_file(surface, msh);
-          }
-        catch (...)
-          {
-            std::filesystem::remove(msh);
-            throw;
-          }
-        std::filesystem::remove(msh);
+        read_msh_file(surface, msh);
       }
+      catch (...)
+      {
+        std::filesystem::remove(msh);
+        throw;
+      }
+      std::filesystem::remove(msh);
+    }
     else
       read_msh_file(surface, file);
   }
@@ -200,24 +197,24 @@ namespace coshell::mesh
     if (surface.n_active_cells() == 0)
       throw std::runtime_error("the mesh has no cells");
     for (const auto &cell : surface.active_cell_iterators())
+    {
+      if (!cell->reference_cell().is_simplex())
+        throw std::runtime_error("cell " + std::to_string(cell->index()) +
+                                 " is not a triangle; CoShell meshes are "
+                                 "made of triangles only");
+      const Tensor<1, 3> a       = cell->vertex(1) - cell->vertex(0);
+      const Tensor<1, 3> b       = cell->vertex(2) - cell->vertex(0);
+      const double       longest = std::max(
+                {a.norm(), b.norm(), (cell->vertex(2) - cell->vertex(1)).norm()});
+      if (!(cross_product_3d(a, b).norm() > 1e-12 * longest * longest))
       {
-        if (!cell->reference_cell().is_simplex())
-          throw std::runtime_error("cell " + std::to_string(cell->index()) +
-                                   " is not a triangle; CoShell meshes are "
-                                   "made of triangles only");
-        const Tensor<1, 3> a = cell->vertex(1) - cell->vertex(0);
-        const Tensor<1, 3> b = cell->vertex(2) - cell->vertex(0);
-        const double longest = std::max(
-          {a.norm(), b.norm(), (cell->vertex(2) - cell->vertex(1)).norm()});
-        if (!(cross_product_3d(a, b).norm() > 1e-12 * longest * longest))
-          {
-            std::ostringstream message;
-            message << "degenerate triangle: cell " << cell->index()
-                    << " with vertices (" << cell->vertex(0) << "), ("
-                    << cell->vertex(1) << "), (" << cell->vertex(2)
-                    << ") has (numerically) zero area";
-            throw std::runtime_error(message.str());
-          }
+        std::ostringstream message;
+        message << "degenerate triangle: cell " << cell->index()
+                << " with vertices (" << cell->vertex(0) << "), ("
+                << cell->vertex(1) << "), (" << cell->vertex(2)
+                << ") has (numerically) zero area";
+        throw std::runtime_error(message.str());
       }
+    }
   }
 } // namespace coshell::mesh

@@ -12,42 +12,32 @@ namespace coshell::mesh
   void MeshParameters::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Mesh");
-    prm.declare_entry("Source",
-                      "rectangle",
+    prm.declare_entry("Source", "rectangle",
                       Patterns::Selection("rectangle|gmsh"),
                       "Where the mesh comes from: a generated rectangular "
                       "plate in the z=0 plane (boundary ids 0: x=0, 1: x=Lx, "
                       "2: y=0, 3: y=Ly) or a gmsh file.");
-    prm.declare_entry("Gmsh file",
-                      "",
-                      Patterns::Anything(),
+    prm.declare_entry("Gmsh file", "", Patterns::Anything(),
                       "A .msh file (read as is, then refined globally per "
                       "level) or a .geo file (meshed by gmsh for each level "
                       "with the gmsh constant refinement_level set to the "
                       "level). Relative paths are "
                       "tried from the working directory, then from the "
                       "directory of the parameter file.");
-    prm.declare_entry("Triangle pattern",
-                      "crossed",
+    prm.declare_entry("Triangle pattern", "crossed",
                       Patterns::Selection("same-diagonal|alternating|crossed"),
                       "How a generated rectangle splits each square.");
     prm.declare_entry("Length x", "1", Patterns::Double(0), "Plate size in x.");
     prm.declare_entry("Length y", "1", Patterns::Double(0), "Plate size in y.");
-    prm.declare_entry("Subdivisions x",
-                      "4",
-                      Patterns::Integer(1),
+    prm.declare_entry("Subdivisions x", "4", Patterns::Integer(1),
                       "Squares along x at refinement level 0.");
-    prm.declare_entry("Subdivisions y",
-                      "4",
-                      Patterns::Integer(1),
+    prm.declare_entry("Subdivisions y", "4", Patterns::Integer(1),
                       "Squares along y at refinement level 0.");
-    prm.declare_entry("Refinement levels",
-                      "0",
+    prm.declare_entry("Refinement levels", "0",
                       Patterns::List(Patterns::Integer(0, 12), 1),
                       "Levels to run; more than one makes a refinement study "
                       "that writes convergence.csv. Each level halves h.");
-    prm.declare_entry("Normal reference",
-                      "0, 0, 1",
+    prm.declare_entry("Normal reference", "0, 0, 1",
                       Patterns::List(Patterns::Double(), 3, 3),
                       "Cell normals are made consistent across edges and "
                       "each connected patch is turned to face this "
@@ -72,25 +62,24 @@ namespace coshell::mesh
                                         const std::string &prm_directory)
   {
     prm.enter_subsection("Mesh");
-    source    = prm.get("Source");
-    gmsh_file = resolve_path(prm.get("Gmsh file"), prm_directory);
-    pattern   = parse_triangle_pattern(prm.get("Triangle pattern"));
-    length_x  = prm.get_double("Length x");
-    length_y  = prm.get_double("Length y");
+    source         = prm.get("Source");
+    gmsh_file      = resolve_path(prm.get("Gmsh file"), prm_directory);
+    pattern        = parse_triangle_pattern(prm.get("Triangle pattern"));
+    length_x       = prm.get_double("Length x");
+    length_y       = prm.get_double("Length y");
     subdivisions_x = prm.get_integer("Subdivisions x");
     subdivisions_y = prm.get_integer("Subdivisions y");
     refinement_levels.clear();
-    for (const int level :
-         Utilities::string_to_int(Utilities::split_string_list(
-           prm.get("Refinement levels"))))
+    for (const int level : Utilities::string_to_int(
+             Utilities::split_string_list(prm.get("Refinement levels"))))
       refinement_levels.push_back(level);
     const std::vector<double> normal = Utilities::string_to_double(
-      Utilities::split_string_list(prm.get("Normal reference")));
+        Utilities::split_string_list(prm.get("Normal reference")));
     normal_reference = Tensor<1, 3>({normal[0], normal[1], normal[2]});
     prm.leave_subsection();
     if (source == "gmsh" && gmsh_file.empty())
       throw std::invalid_argument(
-        "Mesh/Gmsh file must be set when Mesh/Source = gmsh");
+          "Mesh/Gmsh file must be set when Mesh/Source = gmsh");
     if (source == "rectangle" && !(length_x > 0 && length_y > 0))
       throw std::invalid_argument("Mesh/Length x and Length y must be > 0");
   }
@@ -99,19 +88,15 @@ namespace coshell::mesh
   {
     const unsigned int factor = 1u << level;
     if (source == "rectangle")
-      make_rectangle(surface,
-                     length_x,
-                     length_y,
-                     subdivisions_x * factor,
-                     subdivisions_y * factor,
-                     pattern);
+      make_rectangle(surface, length_x, length_y, subdivisions_x * factor,
+                     subdivisions_y * factor, pattern);
     else if (std::filesystem::path(gmsh_file).extension() == ".geo")
       read_gmsh(surface, gmsh_file, level);
     else
-      {
-        read_gmsh(surface, gmsh_file, 0);
-        surface.refine_global(level);
-      }
+    {
+      read_gmsh(surface, gmsh_file, 0);
+      surface.refine_global(level);
+    }
     check_cells(surface);
   }
 } // namespace coshell::mesh

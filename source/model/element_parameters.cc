@@ -9,8 +9,7 @@ namespace coshell::model
   void ElementParameters::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Material");
-    prm.declare_entry("Young's modulus", "1", Patterns::Double(),
-                      "E, > 0.");
+    prm.declare_entry("Young's modulus", "1", Patterns::Double(), "E, > 0.");
     prm.declare_entry("Poisson's ratio", "0.3", Patterns::Double(),
                       "nu, in (-1, 0.5).");
     prm.declare_entry("Thickness", "0.01", Patterns::Double(), "h, > 0.");
@@ -46,27 +45,28 @@ namespace coshell::model
     material.density        = prm.get_double("Density");
     prm.leave_subsection();
     try
-      {
-        material.validate();
-      }
+    {
+      material.validate();
+    }
     catch (const std::invalid_argument &error)
-      {
-        throw std::invalid_argument(std::string("subsection Material: ") +
-                                    error.what());
-      }
+    {
+      throw std::invalid_argument(std::string("subsection Material: ") +
+                                  error.what());
+    }
 
     prm.enter_subsection("Element");
-    formulation = Formulation::linear;
+    formulation                = Formulation::linear;
     const std::string membrane = prm.get("Membrane element");
-    options.membrane =
-      membrane == "off" ? std::nullopt :
-                          std::optional(element::MembraneElement::cst);
-    const std::string bending = prm.get("Bending element");
+    options.membrane           = membrane == "off"
+                                     ? std::nullopt
+                                     : std::optional(element::MembraneElement::cst);
+    const std::string bending  = prm.get("Bending element");
     if (bending == "off")
       options.bending = std::nullopt;
     else
-      options.bending = bending == "dkt" ? element::BendingElement::dkt :
-                                           element::BendingElement::przemieniecki;
+      options.bending = bending == "dkt"
+                            ? element::BendingElement::dkt
+                            : element::BendingElement::przemieniecki;
     options.drilling_factor = prm.get_double("Drilling stiffness factor");
     prm.leave_subsection();
     if (!options.membrane && !options.bending)
@@ -80,9 +80,9 @@ namespace coshell::model
     const std::string membrane = options.membrane ? "cst" : "nomembrane";
     std::string       bending  = "nobending";
     if (options.bending)
-      bending = *options.bending == element::BendingElement::dkt ?
-                  "dkt" :
-                  "przemieniecki";
+      bending = *options.bending == element::BendingElement::dkt
+                    ? "dkt"
+                    : "przemieniecki";
     return membrane + "+" + bending;
   }
 } // namespace coshell::model

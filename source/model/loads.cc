@@ -24,11 +24,11 @@ namespace coshell::model
       return numbers;
     }
 
-    void add_at_vertex(const ShellModel     &model,
-                       const PointLoad      &load,
-                       unsigned int          first_component,
-                       Vector<double>       &rhs,
-                       std::ostream         &log)
+    void add_at_vertex(const ShellModel &model,
+                       const PointLoad  &load,
+                       unsigned int      first_component,
+                       Vector<double>   &rhs,
+                       std::ostream     &log)
     {
       const unsigned int v    = model.nearest_vertex(load.where);
       const auto        &dofs = model.vertex_dofs(v);
@@ -43,16 +43,24 @@ namespace coshell::model
   {
     std::vector<PointLoad> loads;
     for (const auto &entry : Utilities::split_string_list(text, ';'))
+    {
+      const auto parts = Utilities::split_string_list(entry, ':');
+      if (parts.size() != 2)
+        throw std::invalid_argument("point load '" + entry +
+                                    "' is not of the form 'x y z : vx vy vz'");
+      try
       {
-        const auto parts = Utilities::split_string_list(entry, ':');
-        if (parts.size() != 2)
-          throw std::invalid_argument("point load '" + entry +
-                                      "' is not of the form 'x y z : vx vy vz'");
         const auto where = parse_three_numbers(parts[0]);
         const auto value = parse_three_numbers(parts[1]);
         loads.push_back({Point<3>(where[0], where[1], where[2]),
                          Tensor<1, 3>({value[0], value[1], value[2]})});
       }
+      catch (const std::invalid_argument &error)
+      {
+        throw std::invalid_argument("point load '" + entry +
+                                    "': " + error.what());
+      }
+    }
     return loads;
   }
 
@@ -80,38 +88,39 @@ namespace coshell::model
   void Loads::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Loads");
-    pressure = prm.get_double("Pressure");
-    const auto g =
-      Utilities::string_to_double(Utilities::split_string_list(prm.get("Gravity")));
+    pressure     = prm.get_double("Pressure");
+    const auto g = Utilities::string_to_double(
+        Utilities::split_string_list(prm.get("Gravity")));
     gravity = Tensor<1, 3>({g[0], g[1], g[2]});
     scale   = prm.get_double("Load factor");
     try
-      {
-        point_forces  = parse_point_loads(prm.get("Point forces"));
-        point_moments = parse_point_loads(prm.get("Point moments"));
-      }
+    {
+      point_forces  = parse_point_loads(prm.get("Point forces"));
+      point_moments = parse_point_loads(prm.get("Point moments"));
+    }
     catch (const std::invalid_argument &error)
-      {
-        prm.leave_subsection();
-        throw std::invalid_argument(std::string("Loads: ") + error.what());
-      }
+    {
+      prm.leave_subsection();
+      throw std::invalid_argument(std::string("Loads: ") + error.what());
+    }
     prm.leave_subsection();
   }
 
-  void Loads::add_distributed(const ShellModel &model, Vector<double> &rhs) const
+  void Loads::add_distributed(const ShellModel &model,
+                              Vector<double>   &rhs) const
   {
-    const auto  &material = model.element_parameters().material;
+    const auto  &material   = model.element_parameters().material;
     const double areal_mass = material.density * material.thickness;
     for (const auto &cell : model.dof_handler().active_cell_iterators())
-      {
-        const Tensor<1, 3> force_per_area =
+    {
+      const Tensor<1, 3> force_per_area =
           pressure * model.unit_normal(cell) + areal_mass * gravity;
-        const Tensor<1, 3> vertex_force =
+      const Tensor<1, 3> vertex_force =
           force_per_area * element::area(model.triangle(cell)) / 3.0;
-        for (unsigned int v = 0; v < 3; ++v)
-          for (unsigned int d = 0; d < 3; ++d)
-            rhs[cell->vertex_dof_index(v, d)] += vertex_force[d];
-      }
+      for (unsigned int v = 0; v < 3; ++v)
+        for (unsigned int d = 0; d < 3; ++d)
+          rhs[cell->vertex_dof_index(v, d)] += vertex_force[d];
+    }
   }
 
   void Loads::assemble(const ShellModel &model,

@@ -17,15 +17,15 @@ namespace coshell::model
     {
       std::vector<std::pair<std::string, std::string>> entries;
       for (const auto &entry : Utilities::split_string_list(text, ';'))
-        {
-          const auto colon = entry.find(':');
-          if (colon == std::string::npos || colon == 0)
-            throw std::invalid_argument("Quantities of interest/" + parameter +
-                                        ": entry '" + entry +
-                                        "' is not of the form 'name: ...'");
-          entries.emplace_back(Utilities::trim(entry.substr(0, colon)),
-                               Utilities::trim(entry.substr(colon + 1)));
-        }
+      {
+        const auto colon = entry.find(':');
+        if (colon == std::string::npos || colon == 0)
+          throw std::invalid_argument("Quantities of interest/" + parameter +
+                                      ": entry '" + entry +
+                                      "' is not of the form 'name: ...'");
+        entries.emplace_back(Utilities::trim(entry.substr(0, colon)),
+                             Utilities::trim(entry.substr(colon + 1)));
+      }
       return entries;
     }
   } // namespace
@@ -58,38 +58,39 @@ namespace coshell::model
 
     point_values_.clear();
     for (const auto &[name, spec] : named_entries(points, "Point values"))
-      {
-        std::istringstream in(spec);
-        double             x, y, z;
-        std::string        component;
-        if (!(in >> x >> y >> z >> component))
-          throw std::invalid_argument(
-            "Quantities of interest/Point values: '" + spec +
-            "' is not 'x y z component'");
-        point_values_.push_back(
+    {
+      std::istringstream in(spec);
+      double             x, y, z;
+      std::string        component;
+      if (!(in >> x >> y >> z >> component))
+        throw std::invalid_argument("Quantities of interest/Point values: '" +
+                                    spec + "' is not 'x y z component'");
+      point_values_.push_back(
           {name, Point<3>(x, y, z), parse_component(component)});
-      }
+    }
     maximum_values_.clear();
-    for (const auto &[name, component] : named_entries(maxima, "Maximum values"))
+    for (const auto &[name, component] :
+         named_entries(maxima, "Maximum values"))
       maximum_values_.push_back({name, parse_component(component)});
     references_.clear();
     for (const auto &entry : Utilities::split_string_list(references, ','))
-      {
-        const auto pair = Utilities::split_string_list(entry, ':');
-        references_[pair.at(0)] = Utilities::string_to_double(pair.at(1));
-      }
+    {
+      const auto pair         = Utilities::split_string_list(entry, ':');
+      references_[pair.at(0)] = Utilities::string_to_double(pair.at(1));
+    }
     for (const auto &[name, value] : references_)
-      {
-        bool known = false;
-        for (const auto &p : point_values_)
-          known = known || p.name == name;
-        for (const auto &m : maximum_values_)
-          known = known || m.name == name;
-        if (!known)
-          throw std::invalid_argument("Quantities of interest/Reference values "
-                                      "names '" + name +
-                                      "', which is not a defined quantity");
-      }
+    {
+      bool known = false;
+      for (const auto &p : point_values_)
+        known = known || p.name == name;
+      for (const auto &m : maximum_values_)
+        known = known || m.name == name;
+      if (!known)
+        throw std::invalid_argument("Quantities of interest/Reference values "
+                                    "names '" +
+                                    name +
+                                    "', which is not a defined quantity");
+    }
   }
 
   std::map<std::string, double>
@@ -98,20 +99,20 @@ namespace coshell::model
   {
     std::map<std::string, double> values;
     for (const auto &p : point_values_)
-      values[p.name] =
-        solution[model.vertex_dofs(model.nearest_vertex(p.where))[p.component]];
+      values[p.name] = solution[model.vertex_dofs(
+          model.nearest_vertex(p.where))[p.component]];
     for (const auto &m : maximum_values_)
-      {
-        double extreme = 0;
-        for (unsigned int v = 0; v < model.surface().n_vertices(); ++v)
-          if (model.vertex_is_used(v))
-            {
-              const double value = solution[model.vertex_dofs(v)[m.component]];
-              if (std::abs(value) > std::abs(extreme))
-                extreme = value;
-            }
-        values[m.name] = extreme;
-      }
+    {
+      double extreme = 0;
+      for (unsigned int v = 0; v < model.surface().n_vertices(); ++v)
+        if (model.vertex_is_used(v))
+        {
+          const double value = solution[model.vertex_dofs(v)[m.component]];
+          if (std::abs(value) > std::abs(extreme))
+            extreme = value;
+        }
+      values[m.name] = extreme;
+    }
     return values;
   }
 

@@ -17,10 +17,10 @@ namespace coshell::model
     unsigned int n_used = 0;
     for (unsigned int v = 0; v < vertices.size(); ++v)
       if (model.vertex_is_used(v))
-        {
-          centre += vertices[v];
-          ++n_used;
-        }
+      {
+        centre += vertices[v];
+        ++n_used;
+      }
     centre /= n_used;
     double size = 0;
     for (unsigned int v = 0; v < vertices.size(); ++v)
@@ -32,20 +32,20 @@ namespace coshell::model
       mode.reinit(model.n_dofs());
     for (unsigned int v = 0; v < vertices.size(); ++v)
       if (model.vertex_is_used(v))
+      {
+        const VertexDofs  &dofs = model.vertex_dofs(v);
+        const Tensor<1, 3> arm  = (vertices[v] - centre) / size;
+        for (unsigned int axis = 0; axis < 3; ++axis)
         {
-          const VertexDofs  &dofs = model.vertex_dofs(v);
-          const Tensor<1, 3> arm  = (vertices[v] - centre) / size;
-          for (unsigned int axis = 0; axis < 3; ++axis)
-            {
-              Tensor<1, 3> omega;
-              omega[axis] = 1;
-              const Tensor<1, 3> u = cross_product_3d(omega, arm);
-              modes[axis][dofs[axis]] = 1;
-              for (unsigned int d = 0; d < 3; ++d)
-                modes[3 + axis][dofs[d]] = u[d];
-              modes[3 + axis][dofs[rx + axis]] = 1.0 / size;
-            }
+          Tensor<1, 3> omega;
+          omega[axis]             = 1;
+          const Tensor<1, 3> u    = cross_product_3d(omega, arm);
+          modes[axis][dofs[axis]] = 1;
+          for (unsigned int d = 0; d < 3; ++d)
+            modes[3 + axis][dofs[d]] = u[d];
+          modes[3 + axis][dofs[rx + axis]] = 1.0 / size;
         }
+      }
     return modes;
   }
 
@@ -58,19 +58,19 @@ namespace coshell::model
     // satisfy every constraint, so nothing stops them.
     LAPACKFullMatrix<double> gram(6, 6);
     for (const auto &line : constraints.get_lines())
+    {
+      std::array<double, 6> violation;
+      for (unsigned int k = 0; k < 6; ++k)
       {
-        std::array<double, 6> violation;
-        for (unsigned int k = 0; k < 6; ++k)
-          {
-            violation[k] = modes[k][line.index];
-            for (const auto &[column, weight] : line.entries)
-              violation[k] -= weight * modes[k][column];
-          }
-        for (unsigned int i = 0; i < 6; ++i)
-          for (unsigned int j = 0; j < 6; ++j)
-            gram(i, j) += violation[i] * violation[j];
+        violation[k] = modes[k][line.index];
+        for (const auto &[column, weight] : line.entries)
+          violation[k] -= weight * modes[k][column];
       }
-    const double scale = std::max(1.0, gram.frobenius_norm());
+      for (unsigned int i = 0; i < 6; ++i)
+        for (unsigned int j = 0; j < 6; ++j)
+          gram(i, j) += violation[i] * violation[j];
+    }
+    const double       scale = std::max(1.0, gram.frobenius_norm());
     Vector<double>     free_amounts;
     FullMatrix<double> free_modes;
     gram.compute_eigenvalues_symmetric(-1.0, 1e-10 * scale, 1e-14 * scale,
@@ -85,14 +85,14 @@ namespace coshell::model
     const char *plus = "";
     for (unsigned int k = 0; k < 6; ++k)
       if (std::abs(free_modes(k, 0)) > 1e-3)
-        {
-          motion << plus << free_modes(k, 0) << " " << names[k];
-          plus = " + ";
-        }
+      {
+        motion << plus << free_modes(k, 0) << " " << names[k];
+        plus = " + ";
+      }
     throw std::runtime_error(
-      "the boundary conditions leave " + std::to_string(free_amounts.size()) +
-      " rigid-body motion(s) free, e.g. " + motion.str() +
-      ": the stiffness would be singular. Add supports in 'Boundary "
-      "conditions/Conditions'.");
+        "the boundary conditions leave " + std::to_string(free_amounts.size()) +
+        " rigid-body motion(s) free, e.g. " + motion.str() +
+        ": the stiffness would be singular. Add supports in 'Boundary "
+        "conditions/Conditions'.");
   }
 } // namespace coshell::model

@@ -13,12 +13,16 @@ namespace coshell::model
 {
   using namespace dealii;
 
+  namespace
+  {
+    const std::array<std::string, dofs_per_vertex> component_names = {
+        {"ux", "uy", "uz", "rx", "ry", "rz"}};
+  }
+
   Component parse_component(const std::string &name)
   {
-    static const std::array<std::string, dofs_per_vertex> names = {
-      "ux", "uy", "uz", "rx", "ry", "rz"};
     for (unsigned int c = 0; c < dofs_per_vertex; ++c)
-      if (name == names[c])
+      if (name == component_names[c])
         return static_cast<Component>(c);
     throw std::invalid_argument("unknown component '" + name +
                                 "' (expected ux, uy, uz, rx, ry or rz)");
@@ -26,19 +30,15 @@ namespace coshell::model
 
   std::string component_name(unsigned int component)
   {
-    static const std::array<std::string, dofs_per_vertex> names = {
-      "ux", "uy", "uz", "rx", "ry", "rz"};
-    return names.at(component);
+    return component_names.at(component);
   }
 
   ShellModel::ShellModel(const mesh::Surface     &surface,
                          const ElementParameters &element,
                          const Tensor<1, 3>      &normal_reference)
-    : surface_(surface)
-    , element_(element)
-    , fe_(FE_SimplexP<2, 3>(1), dofs_per_vertex)
-    , dof_handler_(surface)
-    , normal_sign_(mesh::orient_normals(surface, normal_reference))
+      : surface_(surface), element_(element),
+        fe_(FE_SimplexP<2, 3>(1), dofs_per_vertex), dof_handler_(surface),
+        normal_sign_(mesh::orient_normals(surface, normal_reference))
   {
     // The kernels number DoFs as 6*vertex + component; make sure deal.II
     // agrees so that element matrices scatter without permutation.
@@ -99,16 +99,16 @@ namespace coshell::model
     const auto  &vertices      = surface_.get_vertices();
     for (unsigned int v = 0; v < vertices.size(); ++v)
       if (vertex_is_used(v) && vertices[v].distance(point) < best_distance)
-        {
-          best          = v;
-          best_distance = vertices[v].distance(point);
-        }
+      {
+        best          = v;
+        best_distance = vertices[v].distance(point);
+      }
     return best;
   }
 
   element::SpatialTriangle ShellModel::triangle(const CellIterator &cell) const
   {
-    return {cell->vertex(0), cell->vertex(1), cell->vertex(2)};
+    return {{cell->vertex(0), cell->vertex(1), cell->vertex(2)}};
   }
 
   Tensor<1, 3> ShellModel::unit_normal(const CellIterator &cell) const
@@ -119,7 +119,7 @@ namespace coshell::model
   }
 
   void ShellModel::make_sparsity(const AffineConstraints<double> &constraints,
-                                 SparsityPattern &pattern) const
+                                 SparsityPattern                 &pattern) const
   {
     DynamicSparsityPattern dsp(n_dofs());
     DoFTools::make_sparsity_pattern(dof_handler_, dsp, constraints, false);
@@ -129,63 +129,63 @@ namespace coshell::model
   namespace
   {
     struct AssemblyScratch
-    {};
+    {
+    };
 
     struct AssemblyCopy
     {
       FullMatrix<double>            matrix;
-      std::vector<global_dof_index> dofs = std::vector<global_dof_index>(element::shell_dofs);
-      std::string                   error;
+      std::vector<global_dof_index> dofs =
+          std::vector<global_dof_index>(element::shell_dofs);
+      std::string error;
     };
   } // namespace
 
-  void ShellModel::assemble_stiffness(const AffineConstraints<double> &constraints,
-                                      SparseMatrix<double> &matrix) const
+  void
+  ShellModel::assemble_stiffness(const AffineConstraints<double> &constraints,
+                                 SparseMatrix<double>            &matrix) const
   {
     matrix = 0;
     std::string first_error;
     // Errors are carried to the copier: an exception thrown inside a
     // WorkStream worker would abort the program without a useful message.
-    const auto worker = [this](const CellIterator &cell,
-                               AssemblyScratch &,
-                               AssemblyCopy &copy) {
+    const auto worker =
+        [this](const CellIterator &cell, AssemblyScratch &, AssemblyCopy &copy)
+    {
       copy.error.clear();
       cell->get_dof_indices(copy.dofs);
       try
-        {
-          copy.matrix = element::shell_stiffness(triangle(cell),
-                                                 element_.material,
-                                                 element_.options);
-        }
+      {
+        copy.matrix = element::shell_stiffness(
+            triangle(cell), element_.material, element_.options);
+      }
       catch (const std::exception &error)
-        {
-          std::ostringstream message;
-          message << "element " << cell->active_cell_index() << " at ("
-                  << cell->center() << "): " << error.what();
-          copy.error = message.str();
-        }
+      {
+        std::ostringstream message;
+        message << "element " << cell->active_cell_index() << " at ("
+                << cell->center() << "): " << error.what();
+        copy.error = message.str();
+      }
     };
-    const auto copier = [&](const AssemblyCopy &copy) {
+    const auto copier = [&](const AssemblyCopy &copy)
+    {
       if (!copy.error.empty())
-        {
-          if (first_error.empty())
-            first_error = copy.error;
-          return;
-        }
+      {
+        if (first_error.empty())
+          first_error = copy.error;
+        return;
+      }
       constraints.distribute_local_to_global(copy.matrix, copy.dofs, matrix);
     };
-    WorkStream::run(dof_handler_.begin_active(),
-                    dof_handler_.end(),
-                    worker,
-                    copier,
-                    AssemblyScratch(),
-                    AssemblyCopy());
+    WorkStream::run(dof_handler_.begin_active(), dof_handler_.end(), worker,
+                    copier, AssemblyScratch(), AssemblyCopy());
     if (!first_error.empty())
       throw std::runtime_error(first_error);
   }
 
   element::ShellDisplacements
-  ShellModel::cell_values(const CellIterator &cell, const Vector<double> &u) const
+  ShellModel::cell_values(const CellIterator   &cell,
+                          const Vector<double> &u) const
   {
     std::vector<global_dof_index> dofs(element::shell_dofs);
     cell->get_dof_indices(dofs);
@@ -200,21 +200,20 @@ namespace coshell::model
   {
     std::vector<element::ShellResultants> result(surface_.n_active_cells());
     for (const auto &cell : dof_handler_.active_cell_iterators())
+    {
+      auto &r = result[cell->active_cell_index()];
+      r       = element::shell_resultants(triangle(cell), element_.material,
+                                          element_.options,
+                                          cell_values(cell, solution));
+      // Moments are measured with z along the oriented normal, which may
+      // be opposite to the element frame's e3.
+      if (normal_sign_[cell->active_cell_index()] < 0)
       {
-        auto &r = result[cell->active_cell_index()];
-        r       = element::shell_resultants(triangle(cell),
-                                      element_.material,
-                                      element_.options,
-                                      cell_values(cell, solution));
-        // Moments are measured with z along the oriented normal, which may
-        // be opposite to the element frame's e3.
-        if (normal_sign_[cell->active_cell_index()] < 0)
-          {
-            r.bending_global *= -1;
-            for (double &m : r.bending_local)
-              m = -m;
-          }
+        r.bending_global *= -1;
+        for (double &m : r.bending_local)
+          m = -m;
       }
+    }
     return result;
   }
 } // namespace coshell::model

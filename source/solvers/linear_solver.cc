@@ -18,12 +18,12 @@ namespace coshell::solvers
   /// Whatever each method keeps between factorize() and solve().
   struct LinearSolver::Backend
   {
-    SparseDirectUMFPACK                          umfpack;
-    TrilinosWrappers::SparseMatrix               trilinos_matrix;
-    SolverControl                                direct_control;
+    SparseDirectUMFPACK                                umfpack;
+    TrilinosWrappers::SparseMatrix                     trilinos_matrix;
+    SolverControl                                      direct_control;
     std::unique_ptr<TrilinosWrappers::SolverDirect>    trilinos_direct;
     std::unique_ptr<TrilinosWrappers::PreconditionAMG> amg;
-    IndexSet                                     all_rows;
+    IndexSet                                           all_rows;
 
     TrilinosWrappers::MPI::Vector to_trilinos(const Vector<double> &v) const
     {
@@ -35,9 +35,7 @@ namespace coshell::solvers
     }
   };
 
-  LinearSolver::LinearSolver()
-    : backend_(std::make_unique<Backend>())
-  {}
+  LinearSolver::LinearSolver() : backend_(std::make_unique<Backend>()) {}
 
   LinearSolver::~LinearSolver() = default;
 
@@ -69,61 +67,63 @@ namespace coshell::solvers
   void LinearSolver::factorize(const SparseMatrix<double> &matrix)
   {
     if (method_ == "umfpack")
-      {
-        backend_->umfpack.initialize(matrix);
-        return;
-      }
+    {
+      backend_->umfpack.initialize(matrix);
+      return;
+    }
     backend_->all_rows = complete_index_set(matrix.m());
     backend_->trilinos_matrix.reinit(matrix);
     if (method_ == "amesos-klu")
-      {
-        backend_->trilinos_direct = std::make_unique<TrilinosWrappers::SolverDirect>(
-          backend_->direct_control,
-          TrilinosWrappers::SolverDirect::AdditionalData(false, "Amesos_Klu"));
-        backend_->trilinos_direct->initialize(backend_->trilinos_matrix);
-      }
+    {
+      backend_->trilinos_direct =
+          std::make_unique<TrilinosWrappers::SolverDirect>(
+              backend_->direct_control,
+              TrilinosWrappers::SolverDirect::AdditionalData(false,
+                                                             "Amesos_Klu"));
+      backend_->trilinos_direct->initialize(backend_->trilinos_matrix);
+    }
     else
-      {
-        TrilinosWrappers::PreconditionAMG::AdditionalData data;
-        data.elliptic = true;
-        backend_->amg  = std::make_unique<TrilinosWrappers::PreconditionAMG>();
-        backend_->amg->initialize(backend_->trilinos_matrix, data);
-      }
+    {
+      TrilinosWrappers::PreconditionAMG::AdditionalData data;
+      data.elliptic = true;
+      backend_->amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
+      backend_->amg->initialize(backend_->trilinos_matrix, data);
+    }
   }
 
   void LinearSolver::solve(Vector<double> &x, const Vector<double> &b)
   {
     if (method_ == "umfpack")
-      {
-        x = b;
-        backend_->umfpack.solve(x);
-        last_iterations_ = 1;
-        return;
-      }
+    {
+      x = b;
+      backend_->umfpack.solve(x);
+      last_iterations_ = 1;
+      return;
+    }
     const TrilinosWrappers::MPI::Vector rhs = backend_->to_trilinos(b);
-    TrilinosWrappers::MPI::Vector       solution(backend_->all_rows, MPI_COMM_SELF);
+    TrilinosWrappers::MPI::Vector solution(backend_->all_rows, MPI_COMM_SELF);
     if (method_ == "amesos-klu")
-      {
-        backend_->trilinos_direct->solve(solution, rhs);
-        last_iterations_ = 1;
-      }
+    {
+      backend_->trilinos_direct->solve(solution, rhs);
+      last_iterations_ = 1;
+    }
     else
+    {
+      SolverControl control(max_iterations_, tolerance_ * b.l2_norm());
+      SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
+      try
       {
-        SolverControl control(max_iterations_, tolerance_ * b.l2_norm());
-        SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
-        try
-          {
-            cg.solve(backend_->trilinos_matrix, solution, rhs, *backend_->amg);
-          }
-        catch (const SolverControl::NoConvergence &failure)
-          {
-            throw std::runtime_error(
-              "Linear solver/Method = cg-amg did not converge in " +
-              std::to_string(failure.last_step) + " iterations (residual " +
-              std::to_string(failure.last_residual) + ")");
-          }
-        last_iterations_ = control.last_step();
+        cg.solve(backend_->trilinos_matrix, solution, rhs, *backend_->amg);
       }
+      catch (const SolverControl::NoConvergence &failure)
+      {
+        throw std::runtime_error(
+            "Linear solver/Method = cg-amg did not converge in " +
+            std::to_string(failure.last_step) + " iterations (residual " +
+            std::to_string(failure.last_residual) + ")");
+      }
+      last_iterations_ = control.last_step();
+    }
     for (unsigned int i = 0; i < x.size(); ++i)
       x[i] = solution[i];
   }

@@ -10,8 +10,7 @@ namespace coshell::solvers
 
   LinearStatic::LinearStatic(const model::ShellModel         &model,
                              const AffineConstraints<double> &constraints)
-    : model_(model)
-    , constraints_(constraints)
+      : model_(model), constraints_(constraints)
   {
     model::check_supports(model_, constraints_);
     model_.make_sparsity(constraints_, sparsity_);
@@ -34,23 +33,23 @@ namespace coshell::solvers
     unsigned int n_active     = 0;
     for (unsigned int i = 0; i < stiffness_.m(); ++i)
       if (stiffness_.diag_element(i) != 0)
-        {
-          diagonal_sum += std::abs(stiffness_.diag_element(i));
-          ++n_active;
-        }
+      {
+        diagonal_sum += std::abs(stiffness_.diag_element(i));
+        ++n_active;
+      }
     const double typical = n_active > 0 ? diagonal_sum / n_active : 1.0;
     n_inactive_dofs_     = 0;
     for (unsigned int i = 0; i < stiffness_.m(); ++i)
       if (stiffness_.diag_element(i) == 0)
-        {
-          if (load_[i] != 0)
-            throw std::runtime_error(
+      {
+        if (load_[i] != 0)
+          throw std::runtime_error(
               "a load acts on DoF " + std::to_string(i) +
               ", which no element stiffens (is the membrane or bending part "
               "switched off?)");
-          stiffness_.diag_element(i) = typical;
-          ++n_inactive_dofs_;
-        }
+        stiffness_.diag_element(i) = typical;
+        ++n_inactive_dofs_;
+      }
   }
 
   Vector<double> LinearStatic::solve(LinearSolver &solver) const

@@ -30,7 +30,7 @@ def main():
         problems.append("exit status is 0")
     if result.returncode < 0 or "Aborted" in result.stderr:
         problems.append("the process crashed instead of reporting the error")
-    if not re.search(args.pattern, result.stderr):
+    if not re.search(args.pattern, result.stderr, re.S):
         problems.append(f"stderr does not match /{args.pattern}/")
     if args.output and os.path.exists(os.path.join(args.output, "summary.json")):
         problems.append("a summary.json was left behind")

@@ -5,6 +5,8 @@ that a test states its own independent reference.
 
   run_and_check.py --coshell BIN --prm FILE --output DIR [--set A/B=v ...]
       [--value QOI REFERENCE RTOL]   |qoi - reference| <= rtol |reference|
+      [--error-above QOI REFERENCE RTOL]  the method is known to miss the
+                                     reference by more than rtol
       [--min-rate RATE]              last observed rate in convergence.csv
       [--max-rate RATE]
 """
@@ -31,15 +33,18 @@ def run_coshell(args):
         return json.load(f)
 
 
-def check_values(summary, checks):
+def check_values(summary, checks, within):
+    """within=True: error <= rtol; within=False: error > rtol (a documented
+    failure to converge, asserted so that a change is noticed)."""
     failures = []
     for name, reference, rtol in checks:
         value = summary["qoi"][name]
         error = abs(value - float(reference)) / abs(float(reference))
-        verdict = "ok" if error <= float(rtol) else "FAIL"
+        passed = error <= float(rtol) if within else error > float(rtol)
+        relation = "tolerance" if within else "expected above"
         print(f"{name}: {value:.8g} vs reference {reference} -> relative error "
-              f"{error:.3e} (tolerance {rtol}) {verdict}")
-        if verdict != "ok":
+              f"{error:.3e} ({relation} {rtol}) {'ok' if passed else 'FAIL'}")
+        if not passed:
             failures.append(name)
     return failures
 
@@ -68,15 +73,18 @@ def main():
     parser.add_argument("--set", action="append", default=[])
     parser.add_argument("--value", nargs=3, action="append", default=[],
                         metavar=("QOI", "REFERENCE", "RTOL"))
+    parser.add_argument("--error-above", nargs=3, action="append", default=[],
+                        metavar=("QOI", "REFERENCE", "RTOL"))
     parser.add_argument("--min-rate", type=float)
     parser.add_argument("--max-rate", type=float)
     args = parser.parse_args()
 
     summary = run_coshell(args)
-    failures = check_values(summary, args.value)
+    failures = check_values(summary, args.value, True)
+    failures += check_values(summary, args.error_above, False)
     if args.min_rate is not None or args.max_rate is not None:
         failures += check_rate(args.output, args.min_rate, args.max_rate)
-    checks = len(args.value) + (args.min_rate is not None) + (args.max_rate is not None)
+    checks = len(args.value) + len(args.error_above) + (args.min_rate is not None) + (args.max_rate is not None)
     print(f"{checks - len(failures)} passed, {len(failures)} failed")
     sys.exit(1 if failures else 0)
 

@@ -33,8 +33,8 @@ namespace coshell::driver
   public:
     /// Declares every subsection of every component.
     static void declare_parameters(dealii::ParameterHandler &prm);
-    void parse_parameters(dealii::ParameterHandler &prm,
-                          const std::string        &prm_file);
+    void        parse_parameters(dealii::ParameterHandler &prm,
+                                 const std::string        &prm_file);
 
     /// Runs all levels; returns the summary written to summary.json.
     io::Json run(const std::string &output_directory, std::ostream &log);

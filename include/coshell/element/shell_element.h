@@ -27,7 +27,7 @@ namespace coshell::element
   /// component, which is deal.II's cell-local order for
   /// FESystem(FE_SimplexP<2,3>(1), 6).
   constexpr unsigned int shell_dofs = 18;
-  using ShellDisplacements = std::array<double, shell_dofs>;
+  using ShellDisplacements          = std::array<double, shell_dofs>;
 
   /// Linear flat-shell stiffness in global axes: membrane and bending
   /// assembled in the element frame (make_element_frame) and rotated with
@@ -40,10 +40,10 @@ namespace coshell::element
   /// axes as symmetric 3x3 tensors (N = sum N_ab e_a (x) e_b, same for M).
   struct ShellResultants
   {
-    MembraneForces               membrane_local{};
-    BendingMoments               bending_local{};
-    dealii::Tensor<2, 3>         membrane_global;
-    dealii::Tensor<2, 3>         bending_global;
+    MembraneForces       membrane_local{};
+    BendingMoments       bending_local{};
+    dealii::Tensor<2, 3> membrane_global;
+    dealii::Tensor<2, 3> bending_global;
   };
 
   ShellResultants shell_resultants(const SpatialTriangle     &triangle,

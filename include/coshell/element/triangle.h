@@ -41,9 +41,9 @@ namespace coshell::element
   /// With these axes the planar vertices are always counter-clockwise.
   struct ElementFrame
   {
-    Point<3>                  origin;
-    std::array<Tensor<1, 3>, 3> axes; ///< e1, e2, e3
-    PlanarTriangle            planar; ///< vertex coordinates in (e1, e2)
+    Point<3>                    origin;
+    std::array<Tensor<1, 3>, 3> axes;   ///< e1, e2, e3
+    PlanarTriangle              planar; ///< vertex coordinates in (e1, e2)
   };
 
   /// Builds the frame. Throws DegenerateTriangle when the area is below

@@ -33,7 +33,8 @@ namespace coshell::io
     std::string dump(unsigned int indent = 0) const;
 
   private:
-    std::variant<std::nullptr_t, double, bool, std::string, Object, Array> value_;
+    std::variant<std::nullptr_t, double, bool, std::string, Object, Array>
+        value_;
   };
 
   /// Writes 'text' to 'path' through a temporary file and a rename, so a

@@ -17,8 +17,8 @@ namespace coshell::io
   /// What one refinement level produced.
   struct LevelResult
   {
-    unsigned int                  level = 0;
-    double                        h     = 0; ///< longest edge in the mesh
+    unsigned int                  level   = 0;
+    double                        h       = 0; ///< longest edge in the mesh
     unsigned int                  n_cells = 0, n_vertices = 0;
     unsigned long                 n_dofs = 0, n_inactive_dofs = 0;
     PhaseTimes                    wall_time_s;

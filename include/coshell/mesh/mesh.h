@@ -48,7 +48,7 @@ namespace coshell::mesh
   {
     std::string               source = "rectangle";
     std::string               gmsh_file;
-    TrianglePattern           pattern = TrianglePattern::crossed;
+    TrianglePattern           pattern  = TrianglePattern::crossed;
     double                    length_x = 1.0, length_y = 1.0;
     unsigned int              subdivisions_x = 4, subdivisions_y = 4;
     std::vector<unsigned int> refinement_levels{0};

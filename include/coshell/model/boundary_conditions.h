@@ -17,17 +17,17 @@ namespace coshell::model
   {
     enum class Type
     {
-      clamped,                 ///< all translations and rotations fixed
-      simply_supported_hard,   ///< translations fixed, and the rotation
-                               ///< about the in-plane edge normal
-      simply_supported_soft,   ///< translations fixed, rotations free
-      symmetry,                ///< mirror plane with a given normal
-      fixed_components,        ///< listed global components fixed
+      clamped,               ///< all translations and rotations fixed
+      simply_supported_hard, ///< translations fixed, and the rotation
+                             ///< about the in-plane edge normal
+      simply_supported_soft, ///< translations fixed, rotations free
+      symmetry,              ///< mirror plane with a given normal
+      fixed_components,      ///< listed global components fixed
       free
     };
-    Type                          type = Type::free;
-    dealii::Tensor<1, 3>          plane_normal;       ///< for symmetry
-    std::vector<Component>        components;         ///< for fixed
+    Type                   type = Type::free;
+    dealii::Tensor<1, 3>   plane_normal; ///< for symmetry
+    std::vector<Component> components;   ///< for fixed
   };
 
   /// Parses "clamped", "simply supported hard", "simply supported soft",

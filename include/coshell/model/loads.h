@@ -30,7 +30,7 @@ namespace coshell::model
     /// Adds the load vector. Pressure and gravity are lumped: each vertex
     /// of a triangle receives a third of its resultant, and no moment.
     /// 'log' is told which vertex each point load snapped to.
-    void assemble(const ShellModel &model,
+    void assemble(const ShellModel       &model,
                   dealii::Vector<double> &rhs,
                   std::ostream           &log) const;
 
@@ -42,6 +42,7 @@ namespace coshell::model
     dealii::Tensor<1, 3>   gravity;
     std::vector<PointLoad> point_forces, point_moments;
 
-    void add_distributed(const ShellModel &model, dealii::Vector<double> &rhs) const;
+    void add_distributed(const ShellModel       &model,
+                         dealii::Vector<double> &rhs) const;
   };
 } // namespace coshell::model

@@ -20,7 +20,8 @@ namespace coshell::model
 
     /// Values of every named quantity for a solution.
     std::map<std::string, double>
-    evaluate(const ShellModel &model, const dealii::Vector<double> &solution) const;
+    evaluate(const ShellModel             &model,
+             const dealii::Vector<double> &solution) const;
 
     /// Reference values given in the prm, by name.
     const std::map<std::string, double> &references() const;

@@ -14,7 +14,8 @@ namespace coshell::model
   /// vertex centroid (u = omega x (X - c), theta = omega), with the
   /// rotations scaled by 1/(mesh size) so all six have comparable norms.
   /// Also the near-null space an algebraic multigrid wants.
-  std::array<dealii::Vector<double>, 6> rigid_body_modes(const ShellModel &model);
+  std::array<dealii::Vector<double>, 6>
+  rigid_body_modes(const ShellModel &model);
 
   /// Throws std::runtime_error, naming the motion, when the constraints
   /// leave a rigid-body motion free (the stiffness would be singular).

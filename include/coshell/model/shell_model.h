@@ -32,7 +32,7 @@ namespace coshell::model
   constexpr unsigned int dofs_per_vertex = 6;
 
   /// "ux" -> Component::ux etc.; throws naming the accepted names.
-  Component parse_component(const std::string &name);
+  Component   parse_component(const std::string &name);
   std::string component_name(unsigned int component);
 
   /// The six global DoF indices of one mesh vertex.
@@ -68,24 +68,26 @@ namespace coshell::model
     void make_sparsity(const dealii::AffineConstraints<double> &constraints,
                        dealii::SparsityPattern                 &pattern) const;
     /// Assembles the linear stiffness (multithreaded with WorkStream).
-    void assemble_stiffness(const dealii::AffineConstraints<double> &constraints,
-                            dealii::SparseMatrix<double> &matrix) const;
+    void
+    assemble_stiffness(const dealii::AffineConstraints<double> &constraints,
+                       dealii::SparseMatrix<double>            &matrix) const;
 
     /// The 18 element DoF values of a cell, in kernel order.
     element::ShellDisplacements
-    cell_values(const CellIterator &cell, const dealii::Vector<double> &u) const;
+    cell_values(const CellIterator           &cell,
+                const dealii::Vector<double> &u) const;
 
     /// Membrane forces and bending moments of every active cell.
     std::vector<element::ShellResultants>
     resultants(const dealii::Vector<double> &solution) const;
 
   private:
-    const mesh::Surface            &surface_;
-    ElementParameters               element_;
-    dealii::FESystem<2, 3>          fe_;
-    dealii::DoFHandler<2, 3>        dof_handler_;
-    std::vector<VertexDofs>         vertex_dofs_;
-    std::vector<int>                normal_sign_;
+    const mesh::Surface     &surface_;
+    ElementParameters        element_;
+    dealii::FESystem<2, 3>   fe_;
+    dealii::DoFHandler<2, 3> dof_handler_;
+    std::vector<VertexDofs>  vertex_dofs_;
+    std::vector<int>         normal_sign_;
 
     void number_vertex_dofs();
   };

@@ -31,9 +31,9 @@ namespace coshell::solvers
     unsigned int last_iterations() const;
 
   private:
-    std::string  method_ = "umfpack";
-    double       tolerance_ = 1e-10;
-    unsigned int max_iterations_ = 10000;
+    std::string  method_          = "umfpack";
+    double       tolerance_       = 1e-10;
+    unsigned int max_iterations_  = 10000;
     unsigned int last_iterations_ = 0;
 
     struct Backend;

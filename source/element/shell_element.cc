@@ -1,0 +1,130 @@
+#include <coshell/element/shell_element.h>
+
+#include <algorithm>
+
+namespace coshell::element
+{
+  namespace
+  {
+    using Components = std::array<unsigned int, 3>;
+
+    // Where the 3 DOFs per node of each sub-element sit among the 6 local
+    // DOFs (u, v, w, theta_x, theta_y, theta_z) of a node.
+    constexpr Components membrane_components = {{0, 1, 5}};
+    constexpr Components bending_components  = {{2, 3, 4}};
+
+    constexpr unsigned int shell_dof(unsigned int      sub_dof,
+                                     const Components &components)
+    {
+      return 6 * (sub_dof / 3) + components[sub_dof % 3];
+    }
+
+    void add_sub_element(const FullMatrix<double> &sub_stiffness,
+                         const Components         &components,
+                         FullMatrix<double>       &shell)
+    {
+      for (unsigned int a = 0; a < 9; ++a)
+        for (unsigned int b = 0; b < 9; ++b)
+          shell(shell_dof(a, components), shell_dof(b, components)) +=
+              sub_stiffness(a, b);
+    }
+
+    std::array<double, 9> sub_element_dofs(const ShellDisplacements &local,
+                                           const Components         &components)
+    {
+      std::array<double, 9> dofs;
+      for (unsigned int a = 0; a < 9; ++a)
+        dofs[a] = local[shell_dof(a, components)];
+      return dofs;
+    }
+
+    // T with u_local = T u_global: the frame axes as rows, once for the
+    // translations and once for the rotations of each node.
+    FullMatrix<double> frame_rotation(const ElementFrame &frame)
+    {
+      FullMatrix<double> rotation(shell_dofs, shell_dofs);
+      for (unsigned int block = 0; block < 6; ++block)
+        for (unsigned int a = 0; a < 3; ++a)
+          for (unsigned int b = 0; b < 3; ++b)
+            rotation(3 * block + a, 3 * block + b) = frame.axes[a][b];
+      return rotation;
+    }
+
+    // sum_ab R_ab e_a (x) e_b over the in-plane axes, R = [[xx, xy], [xy, yy]].
+    Tensor<2, 3> to_global_tensor(const ElementFrame          &frame,
+                                  const std::array<double, 3> &resultant)
+    {
+      const double components[2][2] = {{resultant[0], resultant[2]},
+                                       {resultant[2], resultant[1]}};
+      Tensor<2, 3> global;
+      for (unsigned int a = 0; a < 2; ++a)
+        for (unsigned int b = 0; b < 2; ++b)
+          global += components[a][b] *
+                    dealii::outer_product(frame.axes[a], frame.axes[b]);
+      return global;
+    }
+  } // namespace
+
+  FullMatrix<double> shell_stiffness(const SpatialTriangle     &triangle,
+                                     const ShellMaterial       &material,
+                                     const ShellElementOptions &options)
+  {
+    material.validate();
+    const ElementFrame frame = make_element_frame(triangle);
+
+    FullMatrix<double> local(shell_dofs, shell_dofs);
+    if (options.membrane)
+    {
+      FullMatrix<double> membrane = cst_stiffness(frame.planar, material);
+      add_drilling_penalty(frame.planar, material, options.drilling_factor,
+                           membrane);
+      add_sub_element(membrane, membrane_components, local);
+    }
+    if (options.bending)
+      add_sub_element(
+          bending_stiffness(*options.bending, frame.planar, material),
+          bending_components, local);
+
+    const FullMatrix<double> rotation = frame_rotation(frame);
+    FullMatrix<double>       global(shell_dofs, shell_dofs);
+    global.triple_product(local, rotation, rotation, true, false);
+    return global;
+  }
+
+  ShellDisplacements to_element_frame(const ElementFrame       &frame,
+                                      const ShellDisplacements &global_dofs)
+  {
+    ShellDisplacements local;
+    for (unsigned int block = 0; block < 6; ++block)
+    {
+      Tensor<1, 3> vector;
+      for (unsigned int a = 0; a < 3; ++a)
+        vector[a] = global_dofs[3 * block + a];
+      const Tensor<1, 3> rotated = to_local(frame, vector);
+      for (unsigned int a = 0; a < 3; ++a)
+        local[3 * block + a] = rotated[a];
+    }
+    return local;
+  }
+
+  ShellResultants shell_resultants(const SpatialTriangle     &triangle,
+                                   const ShellMaterial       &material,
+                                   const ShellElementOptions &options,
+                                   const ShellDisplacements  &dofs)
+  {
+    const ElementFrame       frame = make_element_frame(triangle);
+    const ShellDisplacements local = to_element_frame(frame, dofs);
+
+    ShellResultants result;
+    if (options.membrane)
+      result.membrane_local = cst_membrane_forces(
+          frame.planar, material, sub_element_dofs(local, membrane_components));
+    if (options.bending)
+      result.bending_local =
+          bending_moments(*options.bending, frame.planar, material,
+                          sub_element_dofs(local, bending_components));
+    result.membrane_global = to_global_tensor(frame, result.membrane_local);
+    result.bending_global  = to_global_tensor(frame, result.bending_local);
+    return result;
+  }
+} // namespace coshell::element
