@@ -33,3 +33,4 @@ endfunction()
 
 include(${CMAKE_CURRENT_SOURCE_DIR}/plate_tests.cmake)
 include(${CMAKE_CURRENT_SOURCE_DIR}/bad_input_tests.cmake)
+include(${CMAKE_CURRENT_SOURCE_DIR}/nonlinear_tests.cmake)

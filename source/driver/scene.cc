@@ -1,13 +1,22 @@
 #include <coshell/driver/scene.h>
 #include <coshell/io/results.h>
+#include <coshell/model/corotational_model.h>
+#include <coshell/model/rigid_body_modes.h>
 #include <coshell/model/shell_model.h>
+#include <coshell/model/shell_state.h>
 #include <coshell/solvers/linear_static.h>
 
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <sstream>
 #include <stdexcept>
+
+#ifndef COSHELL_SOURCE_DIR
+#define COSHELL_SOURCE_DIR "."
+#endif
 
 #ifndef COSHELL_GIT_COMMIT
 #define COSHELL_GIT_COMMIT "unknown"
@@ -98,6 +107,7 @@ namespace coshell::driver
     model::Loads::declare_parameters(prm);
     model::QuantitiesOfInterest::declare_parameters(prm);
     solvers::LinearSolver::declare_parameters(prm);
+    solvers::NonlinearStatic::declare_parameters(prm);
     io::VtuOutput::declare_parameters(prm);
   }
 
@@ -112,6 +122,7 @@ namespace coshell::driver
     loads_.parse_parameters(prm);
     quantities_.parse_parameters(prm);
     linear_solver_.parse_parameters(prm);
+    nonlinear_.parse_parameters(prm);
     output_.parse_parameters(prm);
   }
 
@@ -124,20 +135,51 @@ namespace coshell::driver
                             const std::string &directory,
                             std::ostream      &log)
   {
-    const auto      start = std::chrono::steady_clock::now();
-    io::LevelResult result;
-    mesh::Surface   surface;
+    const auto    start = std::chrono::steady_clock::now();
+    mesh::Surface surface;
     mesh_.build(surface, level);
     model::ShellModel         model(surface, element_, mesh_.normal_reference);
     AffineConstraints<double> constraints;
     boundary_conditions_.make_constraints(model, constraints);
     constraints.close();
-    solvers::LinearStatic analysis(model, constraints);
-    result.wall_time_s.setup = seconds_since(start);
+    model::check_supports(model, constraints);
+    const double setup = seconds_since(start);
     log << "level " << level << ": " << surface.n_active_cells() << " cells, "
-        << model.n_dofs() << " dofs\n";
+        << model.n_dofs() << " dofs, " << element_.formulation_name()
+        << " formulation\n";
 
-    auto phase = std::chrono::steady_clock::now();
+    io::LevelResult result =
+        element_.formulation == model::Formulation::linear
+            ? solve_linear(model, constraints, directory, log)
+            : solve_corotational(model, constraints, directory, log);
+    result.wall_time_s.setup += setup;
+    result.wall_time_s.total = seconds_since(start);
+    result.level             = level;
+    result.h                 = longest_edge(surface);
+    result.n_cells           = surface.n_active_cells();
+    result.n_vertices        = surface.n_used_vertices();
+    result.n_dofs            = model.n_dofs();
+    result.reference         = quantities_.references();
+    for (const auto &[name, value] : result.qoi)
+      log << "  " << name << " = " << value << '\n';
+    for (const auto &[name, error] : result.relative_errors())
+      log << "  relative error of " << name << " = " << error << '\n';
+    levels_.push_back(result);
+    return result.to_json();
+  }
+
+  io::LevelResult
+  Scene::solve_linear(const model::ShellModel         &model,
+                      const AffineConstraints<double> &constraints,
+                      const std::string               &directory,
+                      std::ostream                    &log)
+  {
+    io::LevelResult       result;
+    auto                  phase = std::chrono::steady_clock::now();
+    solvers::LinearStatic analysis(model, constraints);
+    result.wall_time_s.setup = seconds_since(phase);
+
+    phase = std::chrono::steady_clock::now();
     analysis.assemble(loads_, log);
     result.wall_time_s.assemble = seconds_since(phase);
 
@@ -145,25 +187,118 @@ namespace coshell::driver
     const Vector<double> solution = analysis.solve(linear_solver_);
     result.wall_time_s.solve      = seconds_since(phase);
 
-    phase            = std::chrono::steady_clock::now();
-    result.qoi       = quantities_.evaluate(model, solution);
-    result.reference = quantities_.references();
+    phase      = std::chrono::steady_clock::now();
+    result.qoi = quantities_.evaluate(model, solution);
     output_.write(model, solution, model.resultants(solution), directory);
     result.wall_time_s.output = seconds_since(phase);
-    result.wall_time_s.total  = seconds_since(start);
+    result.n_inactive_dofs    = analysis.n_inactive_dofs();
+    return result;
+  }
 
-    result.level           = level;
-    result.h               = longest_edge(surface);
-    result.n_cells         = surface.n_active_cells();
-    result.n_vertices      = surface.n_used_vertices();
-    result.n_dofs          = model.n_dofs();
-    result.n_inactive_dofs = analysis.n_inactive_dofs();
-    for (const auto &[name, value] : result.qoi)
-      log << "  " << name << " = " << value << '\n';
-    for (const auto &[name, error] : result.relative_errors())
-      log << "  relative error of " << name << " = " << error << '\n';
-    levels_.push_back(result);
-    return result.to_json();
+  namespace
+  {
+    std::string step_file_name(unsigned int step)
+    {
+      std::ostringstream name;
+      name << "solution-" << std::setw(5) << std::setfill('0') << step;
+      return name.str();
+    }
+
+    void write_reference_points(const model::QuantitiesOfInterest &quantities,
+                                const std::string                 &directory)
+    {
+      std::ostringstream csv;
+      csv << "qoi,load_factor,value\n" << std::setprecision(12);
+      for (const auto &[name, curve] : quantities.reference_curves())
+        for (const auto &[factor, value] : curve)
+          csv << name << ',' << factor << ',' << value << '\n';
+      io::write_file_atomically(directory + "/reference_points.csv", csv.str());
+    }
+  } // namespace
+
+  io::LevelResult
+  Scene::solve_corotational(const model::ShellModel         &model,
+                            const AffineConstraints<double> &constraints,
+                            const std::string               &directory,
+                            std::ostream                    &log)
+  {
+    io::LevelResult                result;
+    auto                           phase = std::chrono::steady_clock::now();
+    const model::CorotationalModel corotational(model);
+    model::ShellState              state(model);
+    SparsityPattern                sparsity;
+    model.make_sparsity(constraints, sparsity);
+    solvers::LoadPattern loads;
+    loads.dead_load.reinit(model.n_dofs());
+    loads_.assemble(model, loads.dead_load, log, true);
+    loads.follower_pressure  = loads_.follower_pressure();
+    result.wall_time_s.setup = seconds_since(phase);
+
+    std::filesystem::create_directories(directory);
+    const std::string curve_file   = directory + "/load_displacement.csv";
+    const std::string history_file = directory + "/newton_history.csv";
+    std::ofstream     curve(curve_file + ".partial");
+    std::ofstream     history(history_file + ".partial");
+    curve << "step,load_factor,iterations";
+    for (const auto &[name, value] :
+         quantities_.evaluate(model, state.values()))
+      curve << ',' << name;
+    curve << '\n' << std::setprecision(12);
+
+    unsigned int last_written = 0;
+    const auto   observer     = [&](unsigned int step, double load_factor,
+                              unsigned int             iterations,
+                              const model::ShellState &converged)
+    {
+      result.qoi = quantities_.evaluate(model, converged.values());
+      curve << step << ',' << load_factor << ',' << iterations;
+      for (const auto &[name, value] : result.qoi)
+        curve << ',' << value;
+      curve << std::endl;
+      log << "  step " << step << ": load factor " << load_factor << ", "
+          << iterations << " Newton iterations\n";
+      result.load_steps = step;
+      result.newton_iterations += iterations;
+      if (output_.wants_step(step))
+      {
+        output_.write(model, converged.values(),
+                      corotational.resultants(converged), directory,
+                      step_file_name(step), load_factor);
+        last_written = step;
+      }
+    };
+    phase = std::chrono::steady_clock::now();
+    nonlinear_.run(corotational, state, loads, constraints, sparsity,
+                   linear_solver_, quantities_.reference_load_factors(),
+                   observer, log, history);
+    result.wall_time_s.solve = seconds_since(phase);
+
+    phase = std::chrono::steady_clock::now();
+    if (last_written != result.load_steps)
+      output_.write(model, state.values(), corotational.resultants(state),
+                    directory, step_file_name(result.load_steps), 1.0);
+    curve.close();
+    history.close();
+    std::filesystem::rename(curve_file + ".partial", curve_file);
+    std::filesystem::rename(history_file + ".partial", history_file);
+    if (!quantities_.reference_curves().empty())
+    {
+      write_reference_points(quantities_, directory);
+      plot_load_displacement(directory, log);
+    }
+    result.wall_time_s.output = seconds_since(phase);
+    return result;
+  }
+
+  void Scene::plot_load_displacement(const std::string &directory,
+                                     std::ostream      &log) const
+  {
+    const std::string command = "/usr/bin/python3 " COSHELL_SOURCE_DIR
+                                "/scripts/plot_load_displacement.py '" +
+                                directory + "' > /dev/null 2>&1";
+    if (std::system(command.c_str()) != 0)
+      log << "  note: could not plot load_displacement.png (needs "
+             "/usr/bin/python3 with matplotlib)\n";
   }
 
   io::Json Scene::run(const std::string &output_directory, std::ostream &log)
@@ -189,7 +324,7 @@ namespace coshell::driver
     }
     summary["prm_file"]      = prm_file_;
     summary["commit"]        = COSHELL_GIT_COMMIT;
-    summary["formulation"]   = "linear";
+    summary["formulation"]   = element_.formulation_name();
     summary["element"]       = element_.element_name();
     summary["linear_solver"] = linear_solver_.method();
     if (study)

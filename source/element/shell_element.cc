@@ -65,13 +65,11 @@ namespace coshell::element
     }
   } // namespace
 
-  FullMatrix<double> shell_stiffness(const SpatialTriangle     &triangle,
-                                     const ShellMaterial       &material,
-                                     const ShellElementOptions &options)
+  FullMatrix<double> shell_stiffness_local(const ElementFrame        &frame,
+                                           const ShellMaterial       &material,
+                                           const ShellElementOptions &options)
   {
     material.validate();
-    const ElementFrame frame = make_element_frame(triangle);
-
     FullMatrix<double> local(shell_dofs, shell_dofs);
     if (options.membrane)
     {
@@ -84,7 +82,17 @@ namespace coshell::element
       add_sub_element(
           bending_stiffness(*options.bending, frame.planar, material),
           bending_components, local);
+    return local;
+  }
 
+  FullMatrix<double> shell_stiffness(const SpatialTriangle     &triangle,
+                                     const ShellMaterial       &material,
+                                     const ShellElementOptions &options)
+  {
+    material.validate(); // before the geometry check, as it always was
+    const ElementFrame       frame = make_element_frame(triangle);
+    const FullMatrix<double> local =
+        shell_stiffness_local(frame, material, options);
     const FullMatrix<double> rotation = frame_rotation(frame);
     FullMatrix<double>       global(shell_dofs, shell_dofs);
     global.triple_product(local, rotation, rotation, true, false);

@@ -30,6 +30,11 @@ namespace coshell::io
     times["solve"]           = wall_time_s.solve;
     times["output"]          = wall_time_s.output;
     times["total"]           = wall_time_s.total;
+    if (load_steps > 0)
+    {
+      json["load_steps"]        = load_steps;
+      json["newton_iterations"] = newton_iterations;
+    }
     Json::Object qoi_json(qoi.begin(), qoi.end());
     json["qoi"] = qoi_json;
     if (!reference.empty())

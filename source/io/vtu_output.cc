@@ -18,14 +18,18 @@ namespace coshell::io
                       "Where results go (the command line's --output wins).");
     prm.declare_entry("Write VTU", "true", Patterns::Bool(),
                       "Write solution.vtu and solution.pvd for ParaView.");
+    prm.declare_entry("Steps between outputs", "1", Patterns::Integer(0),
+                      "Nonlinear runs: write every n-th converged load step "
+                      "(0: only the last one).");
     prm.leave_subsection();
   }
 
   void VtuOutput::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Output");
-    directory  = prm.get("Directory");
-    write_vtu_ = prm.get_bool("Write VTU");
+    directory             = prm.get("Directory");
+    write_vtu_            = prm.get_bool("Write VTU");
+    steps_between_output_ = prm.get_integer("Steps between outputs");
     prm.leave_subsection();
   }
 
@@ -55,11 +59,19 @@ namespace coshell::io
     }
   } // namespace
 
+  bool VtuOutput::wants_step(unsigned int step) const
+  {
+    return write_vtu_ && steps_between_output_ > 0 &&
+           step % steps_between_output_ == 0;
+  }
+
   std::string
   VtuOutput::write(const model::ShellModel                     &model,
                    const Vector<double>                        &solution,
                    const std::vector<element::ShellResultants> &resultants,
-                   const std::string &output_directory) const
+                   const std::string &output_directory,
+                   const std::string &name,
+                   double             time)
   {
     if (!write_vtu_)
       return "";
@@ -93,14 +105,16 @@ namespace coshell::io
     const MappingFE<2, 3> mapping(FE_SimplexP<2, 3>(1));
     data_out.build_patches(mapping);
     std::filesystem::create_directories(output_directory);
-    const std::string vtu = "solution.vtu";
+    const std::string vtu = name + ".vtu";
     {
       std::ofstream out(output_directory + "/" + vtu);
       data_out.write_vtu(out);
     }
+    auto &series = series_[output_directory];
+    series.emplace_back(time, vtu);
     const std::string pvd = output_directory + "/solution.pvd";
     std::ofstream     out(pvd);
-    DataOutBase::write_pvd_record(out, {{0.0, vtu}});
+    DataOutBase::write_pvd_record(out, series);
     return pvd;
   }
 } // namespace coshell::io

@@ -18,8 +18,12 @@ namespace coshell::model
     prm.leave_subsection();
 
     prm.enter_subsection("Element");
-    prm.declare_entry("Formulation", "linear", Patterns::Selection("linear"),
-                      "Kinematics: linear (small displacements).");
+    prm.declare_entry("Formulation", "linear",
+                      Patterns::Selection("linear|corotational"),
+                      "linear: small displacements and rotations, one linear "
+                      "solve. corotational: finite rotations (element-"
+                      "independent co-rotational frame around the same "
+                      "elements), solved by the Nonlinear solver.");
     prm.declare_entry("Membrane element", "cst", Patterns::Selection("cst|off"),
                       "In-plane part of the flat shell triangle: the "
                       "constant-strain triangle, or off (no membrane "
@@ -55,7 +59,9 @@ namespace coshell::model
     }
 
     prm.enter_subsection("Element");
-    formulation                = Formulation::linear;
+    formulation                = prm.get("Formulation") == "corotational"
+                                     ? Formulation::corotational
+                                     : Formulation::linear;
     const std::string membrane = prm.get("Membrane element");
     options.membrane           = membrane == "off"
                                      ? std::nullopt
@@ -73,6 +79,11 @@ namespace coshell::model
       throw std::invalid_argument("subsection Element: Membrane element and "
                                   "Bending element are both off; nothing "
                                   "would resist any load");
+  }
+
+  std::string ElementParameters::formulation_name() const
+  {
+    return formulation == Formulation::linear ? "linear" : "corotational";
   }
 
   std::string ElementParameters::element_name() const

@@ -70,6 +70,12 @@ namespace coshell::model
     prm.declare_entry("Pressure", "0", Patterns::Double(),
                       "Uniform pressure (force per unit area) along the "
                       "oriented cell normal, lumped to the vertices.");
+    prm.declare_entry("Pressure type", "dead",
+                      Patterns::Selection("dead|follower"),
+                      "dead: the pressure keeps the direction of the initial "
+                      "normals; follower: it follows the deformed normals "
+                      "(co-rotational formulation only; same as dead in "
+                      "linear runs).");
     prm.declare_entry("Gravity", "0, 0, 0",
                       Patterns::List(Patterns::Double(), 3, 3),
                       "Acceleration vector; the load is density * thickness "
@@ -107,6 +113,7 @@ namespace coshell::model
   }
 
   void Loads::add_distributed(const ShellModel &model,
+                              double            dead_pressure,
                               Vector<double>   &rhs) const
   {
     const auto  &material   = model.element_parameters().material;
@@ -114,7 +121,7 @@ namespace coshell::model
     for (const auto &cell : model.dof_handler().active_cell_iterators())
     {
       const Tensor<1, 3> force_per_area =
-          pressure * model.unit_normal(cell) + areal_mass * gravity;
+          dead_pressure * model.unit_normal(cell) + areal_mass * gravity;
       const Tensor<1, 3> vertex_force =
           force_per_area * element::area(model.triangle(cell)) / 3.0;
       for (unsigned int v = 0; v < 3; ++v)
@@ -123,13 +130,21 @@ namespace coshell::model
     }
   }
 
+  double Loads::follower_pressure() const
+  {
+    return pressure_follows ? scale * pressure : 0.0;
+  }
+
   void Loads::assemble(const ShellModel &model,
                        Vector<double>   &rhs,
-                       std::ostream     &log) const
+                       std::ostream     &log,
+                       bool              follower_handled_elsewhere) const
   {
     Vector<double> load(rhs.size());
-    if (pressure != 0 || gravity.norm() != 0)
-      add_distributed(model, load);
+    const double   dead_pressure =
+        pressure_follows && follower_handled_elsewhere ? 0.0 : pressure;
+    if (dead_pressure != 0 || gravity.norm() != 0)
+      add_distributed(model, dead_pressure, load);
     for (const auto &force : point_forces)
       add_at_vertex(model, force, ux, load, log);
     for (const auto &moment : point_moments)

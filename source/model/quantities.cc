@@ -2,6 +2,7 @@
 
 #include <deal.II/base/utilities.h>
 
+#include <algorithm>
 #include <sstream>
 #include <stdexcept>
 
@@ -45,6 +46,12 @@ namespace coshell::model
                       Patterns::Map(Patterns::Anything(), Patterns::Double()),
                       "Reference value per quantity name ('name: value, "
                       "...'); summary.json then reports the relative error.");
+    prm.declare_entry("Reference curves", "", Patterns::Anything(),
+                      "Reference load-displacement points for nonlinear "
+                      "runs, as 'name: factor value, factor value, ...' "
+                      "entries separated by ';'. Load control stops exactly "
+                      "at these load factors; the points are written to "
+                      "reference_points.csv and plotted.");
     prm.leave_subsection();
   }
 
@@ -54,6 +61,7 @@ namespace coshell::model
     const std::string points     = prm.get("Point values");
     const std::string maxima     = prm.get("Maximum values");
     const std::string references = prm.get("Reference values");
+    const std::string curves     = prm.get("Reference curves");
     prm.leave_subsection();
 
     point_values_.clear();
@@ -79,18 +87,52 @@ namespace coshell::model
       references_[pair.at(0)] = Utilities::string_to_double(pair.at(1));
     }
     for (const auto &[name, value] : references_)
+      check_defined(name, "Reference values");
+    reference_curves_.clear();
+    for (const auto &[name, points] : named_entries(curves, "Reference curves"))
     {
-      bool known = false;
-      for (const auto &p : point_values_)
-        known = known || p.name == name;
-      for (const auto &m : maximum_values_)
-        known = known || m.name == name;
-      if (!known)
-        throw std::invalid_argument("Quantities of interest/Reference values "
-                                    "names '" +
-                                    name +
-                                    "', which is not a defined quantity");
+      check_defined(name, "Reference curves");
+      for (const auto &point : Utilities::split_string_list(points, ','))
+      {
+        std::istringstream in(point);
+        double             factor, value;
+        if (!(in >> factor >> value))
+          throw std::invalid_argument(
+              "Quantities of interest/Reference curves: '" + point +
+              "' is not 'load_factor value'");
+        reference_curves_[name].emplace_back(factor, value);
+      }
     }
+  }
+
+  void QuantitiesOfInterest::check_defined(const std::string &name,
+                                           const std::string &parameter) const
+  {
+    bool known = false;
+    for (const auto &p : point_values_)
+      known = known || p.name == name;
+    for (const auto &m : maximum_values_)
+      known = known || m.name == name;
+    if (!known)
+      throw std::invalid_argument("Quantities of interest/" + parameter +
+                                  " names '" + name +
+                                  "', which is not a defined quantity");
+  }
+
+  const std::map<std::string, QuantitiesOfInterest::Curve> &
+  QuantitiesOfInterest::reference_curves() const
+  {
+    return reference_curves_;
+  }
+
+  std::vector<double> QuantitiesOfInterest::reference_load_factors() const
+  {
+    std::vector<double> factors;
+    for (const auto &[name, curve] : reference_curves_)
+      for (const auto &[factor, value] : curve)
+        factors.push_back(factor);
+    std::sort(factors.begin(), factors.end());
+    return factors;
   }
 
   std::map<std::string, double>

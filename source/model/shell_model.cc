@@ -1,6 +1,6 @@
+#include <coshell/model/cell_loop.h>
 #include <coshell/model/shell_model.h>
 
-#include <deal.II/base/work_stream.h>
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/fe_simplex_p.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
@@ -118,6 +118,23 @@ namespace coshell::model
     return normal_sign_[cell->active_cell_index()] * n / n.norm();
   }
 
+  int ShellModel::normal_sign(const CellIterator &cell) const
+  {
+    return normal_sign_[cell->active_cell_index()];
+  }
+
+  void ShellModel::orient_moments(const CellIterator       &cell,
+                                  element::ShellResultants &resultants) const
+  {
+    // Moments are measured with z along the oriented normal, which may be
+    // opposite to the element frame's e3.
+    if (normal_sign(cell) > 0)
+      return;
+    resultants.bending_global *= -1;
+    for (double &m : resultants.bending_local)
+      m = -m;
+  }
+
   void ShellModel::make_sparsity(const AffineConstraints<double> &constraints,
                                  SparsityPattern                 &pattern) const
   {
@@ -126,61 +143,23 @@ namespace coshell::model
     pattern.copy_from(dsp);
   }
 
-  namespace
-  {
-    struct AssemblyScratch
-    {
-    };
-
-    struct AssemblyCopy
-    {
-      FullMatrix<double>            matrix;
-      std::vector<global_dof_index> dofs =
-          std::vector<global_dof_index>(element::shell_dofs);
-      std::string error;
-    };
-  } // namespace
-
   void
   ShellModel::assemble_stiffness(const AffineConstraints<double> &constraints,
                                  SparseMatrix<double>            &matrix) const
   {
     matrix = 0;
-    std::string first_error;
-    // Errors are carried to the copier: an exception thrown inside a
-    // WorkStream worker would abort the program without a useful message.
-    const auto worker =
-        [this](const CellIterator &cell, AssemblyScratch &, AssemblyCopy &copy)
-    {
-      copy.error.clear();
-      cell->get_dof_indices(copy.dofs);
-      try
-      {
-        copy.matrix = element::shell_stiffness(
-            triangle(cell), element_.material, element_.options);
-      }
-      catch (const std::exception &error)
-      {
-        std::ostringstream message;
-        message << "element " << cell->active_cell_index() << " at ("
-                << cell->center() << "): " << error.what();
-        copy.error = message.str();
-      }
-    };
-    const auto copier = [&](const AssemblyCopy &copy)
-    {
-      if (!copy.error.empty())
-      {
-        if (first_error.empty())
-          first_error = copy.error;
-        return;
-      }
-      constraints.distribute_local_to_global(copy.matrix, copy.dofs, matrix);
-    };
-    WorkStream::run(dof_handler_.begin_active(), dof_handler_.end(), worker,
-                    copier, AssemblyScratch(), AssemblyCopy());
-    if (!first_error.empty())
-      throw std::runtime_error(first_error);
+    for_each_cell(
+        dof_handler_,
+        [this](const CellIterator &cell, CellContribution &contribution)
+        {
+          contribution.matrix = element::shell_stiffness(
+              triangle(cell), element_.material, element_.options);
+        },
+        [&](const CellContribution &contribution)
+        {
+          constraints.distribute_local_to_global(contribution.matrix,
+                                                 contribution.dofs, matrix);
+        });
   }
 
   element::ShellDisplacements
@@ -205,14 +184,7 @@ namespace coshell::model
       r       = element::shell_resultants(triangle(cell), element_.material,
                                           element_.options,
                                           cell_values(cell, solution));
-      // Moments are measured with z along the oriented normal, which may
-      // be opposite to the element frame's e3.
-      if (normal_sign_[cell->active_cell_index()] < 0)
-      {
-        r.bending_global *= -1;
-        for (double &m : r.bending_local)
-          m = -m;
-      }
+      orient_moments(cell, r);
     }
     return result;
   }

@@ -9,6 +9,7 @@
 #include <coshell/model/loads.h>
 #include <coshell/model/quantities.h>
 #include <coshell/solvers/linear_solver.h>
+#include <coshell/solvers/nonlinear_static.h>
 
 #include <deal.II/base/parameter_handler.h>
 
@@ -49,11 +50,24 @@ namespace coshell::driver
     model::Loads                 loads_;
     model::QuantitiesOfInterest  quantities_;
     solvers::LinearSolver        linear_solver_;
+    solvers::NonlinearStatic     nonlinear_;
     io::VtuOutput                output_;
     std::vector<io::LevelResult> levels_;
 
     io::Json run_level(unsigned int       level,
                        const std::string &directory,
                        std::ostream      &log);
+    io::LevelResult
+    solve_linear(const model::ShellModel                 &model,
+                 const dealii::AffineConstraints<double> &constraints,
+                 const std::string                       &directory,
+                 std::ostream                            &log);
+    io::LevelResult
+         solve_corotational(const model::ShellModel                 &model,
+                            const dealii::AffineConstraints<double> &constraints,
+                            const std::string                       &directory,
+                            std::ostream                            &log);
+    void plot_load_displacement(const std::string &directory,
+                                std::ostream      &log) const;
   };
 } // namespace coshell::driver

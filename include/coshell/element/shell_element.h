@@ -29,6 +29,13 @@ namespace coshell::element
   constexpr unsigned int shell_dofs = 18;
   using ShellDisplacements          = std::array<double, shell_dofs>;
 
+  /// Linear flat-shell stiffness in the element frame: 18 DOFs, per node
+  /// (u, v, w, theta_x, theta_y, theta_z) along the frame axes, built on
+  /// frame.planar (the frame's origin and axes are not used).
+  FullMatrix<double> shell_stiffness_local(const ElementFrame        &frame,
+                                           const ShellMaterial       &material,
+                                           const ShellElementOptions &options);
+
   /// Linear flat-shell stiffness in global axes: membrane and bending
   /// assembled in the element frame (make_element_frame) and rotated with
   /// K = T^T K_local T.

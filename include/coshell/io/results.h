@@ -22,6 +22,7 @@ namespace coshell::io
     unsigned int                  n_cells = 0, n_vertices = 0;
     unsigned long                 n_dofs = 0, n_inactive_dofs = 0;
     PhaseTimes                    wall_time_s;
+    unsigned int                  load_steps = 0, newton_iterations = 0;
     std::map<std::string, double> qoi, reference;
 
     /// |qoi - reference| / |reference| for every quantity with a reference.

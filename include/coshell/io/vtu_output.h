@@ -4,6 +4,7 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -18,17 +19,27 @@ namespace coshell::io
     static void declare_parameters(dealii::ParameterHandler &prm);
     void        parse_parameters(dealii::ParameterHandler &prm);
 
-    /// Writes DIRECTORY/solution.vtu and its index DIRECTORY/solution.pvd
-    /// (when output is enabled). Returns the .pvd path or "".
+    /// Writes DIRECTORY/NAME.vtu and rewrites DIRECTORY/solution.pvd to
+    /// list every file written to that directory so far, each at its
+    /// 'time' (the load factor in nonlinear runs), so ParaView can step
+    /// through them. Returns the .pvd path, or "" when output is off.
     std::string write(const model::ShellModel                     &model,
-                      const dealii::Vector<double>                &solution,
+                      const dealii::Vector<double>                &values,
                       const std::vector<element::ShellResultants> &resultants,
-                      const std::string &directory) const;
+                      const std::string                           &directory,
+                      const std::string &name = "solution",
+                      double             time = 0);
+
+    /// Whether nonlinear step 'step' should be written (the last step is
+    /// always written by the caller).
+    bool wants_step(unsigned int step) const;
 
     /// Output directory from the prm ("Output/Directory").
     std::string directory = "output";
 
   private:
-    bool write_vtu_ = true;
+    bool         write_vtu_            = true;
+    unsigned int steps_between_output_ = 1;
+    std::map<std::string, std::vector<std::pair<double, std::string>>> series_;
   };
 } // namespace coshell::io

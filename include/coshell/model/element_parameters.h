@@ -9,11 +9,12 @@
 
 namespace coshell::model
 {
-  /// Kinematics of the analysis. Only 'linear' exists so far; the
-  /// co-rotational formulation will be a second value here.
+  /// Kinematics of the analysis: small displacements, or finite
+  /// rotations through the element-independent co-rotational frame.
   enum class Formulation
   {
-    linear
+    linear,
+    corotational
   };
 
   /// prm subsections "Material" and "Element".
@@ -27,6 +28,8 @@ namespace coshell::model
     /// Throws std::invalid_argument naming the parameter for non-physical
     /// material values.
     void parse_parameters(dealii::ParameterHandler &prm);
+
+    std::string formulation_name() const;
 
     /// Short human-readable description, e.g. "cst+dkt".
     std::string element_name() const;

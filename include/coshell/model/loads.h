@@ -20,29 +20,39 @@ namespace coshell::model
   std::vector<PointLoad> parse_point_loads(const std::string &text);
 
   /// prm subsection "Loads". Every load is a dead load in global axes,
-  /// except pressure, which acts along the (oriented) cell normals.
+  /// except pressure, which acts along the (oriented) cell normals: the
+  /// initial ones (dead pressure) or, optionally in co-rotational runs, the
+  /// current ones (follower pressure).
   class Loads
   {
   public:
     static void declare_parameters(dealii::ParameterHandler &prm);
     void        parse_parameters(dealii::ParameterHandler &prm);
 
-    /// Adds the load vector. Pressure and gravity are lumped: each vertex
+    /// Adds the dead-load vector. Pressure and gravity are lumped: each vertex
     /// of a triangle receives a third of its resultant, and no moment.
-    /// 'log' is told which vertex each point load snapped to.
+    /// 'log' is told which vertex each point load snapped to. A follower
+    /// pressure is included along the initial normals unless
+    /// 'follower_handled_elsewhere' (co-rotational runs add it per
+    /// configuration).
     void assemble(const ShellModel       &model,
                   dealii::Vector<double> &rhs,
-                  std::ostream           &log) const;
+                  std::ostream           &log,
+                  bool follower_handled_elsewhere = false) const;
 
-    /// Multiplies every load (for parameter sweeps such as paper Table 1).
-    double scale = 1;
+    /// Pressure that follows the deformed normal (co-rotational runs), or 0
+    /// when the pressure is a dead load (then it is in assemble()).
+    double follower_pressure() const;
 
   private:
-    double                 pressure = 0;
+    double                 scale            = 1;
+    double                 pressure         = 0;
+    bool                   pressure_follows = false;
     dealii::Tensor<1, 3>   gravity;
     std::vector<PointLoad> point_forces, point_moments;
 
     void add_distributed(const ShellModel       &model,
+                         double                  dead_pressure,
                          dealii::Vector<double> &rhs) const;
   };
 } // namespace coshell::model

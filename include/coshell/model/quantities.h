@@ -26,6 +26,12 @@ namespace coshell::model
     /// Reference values given in the prm, by name.
     const std::map<std::string, double> &references() const;
 
+    /// Reference load-displacement points (load factor, value) by name.
+    using Curve = std::vector<std::pair<double, double>>;
+    const std::map<std::string, Curve> &reference_curves() const;
+    /// Every load factor at which some reference curve has a point.
+    std::vector<double> reference_load_factors() const;
+
   private:
     struct PointValue
     {
@@ -41,5 +47,9 @@ namespace coshell::model
     std::vector<PointValue>       point_values_;
     std::vector<MaximumValue>     maximum_values_;
     std::map<std::string, double> references_;
+    std::map<std::string, Curve>  reference_curves_;
+
+    void check_defined(const std::string &name,
+                       const std::string &parameter) const;
   };
 } // namespace coshell::model

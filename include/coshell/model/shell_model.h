@@ -63,6 +63,13 @@ namespace coshell::model
     element::SpatialTriangle triangle(const CellIterator &cell) const;
     /// Unit normal of the cell, oriented consistently over the surface.
     dealii::Tensor<1, 3> unit_normal(const CellIterator &cell) const;
+    /// +1 if that normal is (x1-x0)x(x2-x0), -1 if it is the opposite.
+    int normal_sign(const CellIterator &cell) const;
+    /// Flips bending moments of cells whose normal is opposite to their
+    /// element frame's e3, so moments are measured along the oriented
+    /// normal everywhere.
+    void orient_moments(const CellIterator       &cell,
+                        element::ShellResultants &resultants) const;
 
     /// Sparsity of the stiffness with the given constraints.
     void make_sparsity(const dealii::AffineConstraints<double> &constraints,

@@ -1,0 +1,75 @@
+#pragma once
+
+#include <coshell/element/shell_element.h>
+
+#include <deal.II/base/work_stream.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/vector.h>
+
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace coshell::model
+{
+  /// What one cell contributes: an 18x18 matrix and/or an 18-vector.
+  struct CellContribution
+  {
+    dealii::FullMatrix<double>                   matrix;
+    dealii::Vector<double>                       vector;
+    std::vector<dealii::types::global_dof_index> dofs =
+        std::vector<dealii::types::global_dof_index>(element::shell_dofs);
+    std::string error;
+  };
+
+  /// Multithreaded loop over the active cells (WorkStream): 'compute(cell,
+  /// contribution)' fills the cell's contribution in parallel and
+  /// 'distribute(contribution)' adds it to global objects in order. An
+  /// exception thrown by 'compute' would abort the program inside
+  /// WorkStream, so it is carried to the copier and rethrown afterwards,
+  /// naming the element.
+  template<typename Compute, typename Distribute>
+  void for_each_cell(const dealii::DoFHandler<2, 3> &dof_handler,
+                     const Compute                  &compute,
+                     const Distribute               &distribute)
+  {
+    using CellIterator = dealii::DoFHandler<2, 3>::active_cell_iterator;
+    struct Scratch
+    {
+    };
+    std::string first_error;
+    const auto  worker =
+        [&compute](const CellIterator &cell, Scratch &, CellContribution &copy)
+    {
+      copy.error.clear();
+      cell->get_dof_indices(copy.dofs);
+      try
+      {
+        compute(cell, copy);
+      }
+      catch (const std::exception &error)
+      {
+        std::ostringstream message;
+        message << "element " << cell->active_cell_index() << " at ("
+                << cell->center() << "): " << error.what();
+        copy.error = message.str();
+      }
+    };
+    const auto copier = [&](const CellContribution &copy)
+    {
+      if (!copy.error.empty())
+      {
+        if (first_error.empty())
+          first_error = copy.error;
+        return;
+      }
+      distribute(copy);
+    };
+    dealii::WorkStream::run(dof_handler.begin_active(), dof_handler.end(),
+                            worker, copier, Scratch(), CellContribution());
+    if (!first_error.empty())
+      throw std::runtime_error(first_error);
+  }
+} // namespace coshell::model

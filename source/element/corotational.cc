@@ -1,0 +1,761 @@
+// Co-rotational shell triangle (EICR, Rankin & Nour-Omid 1988; Felippa &
+// Haugen 2005). The kinematic map p -> d (perturbation of the current state
+// -> deformational DOFs) is differentiated with Sacado forward AD; the
+// material part stays the linear 1/2 d^T K_l d, contracted in double.
+//
+// The map is split to keep the AD cheap. The co-rotated frame E and the
+// in-plane deformational translations depend on the 9 vertex translations u
+// only. Writing a perturbed frame as E(u) = exp(skew(omega(u))) E, the
+// deformational rotation of node i,
+//   theta_d,i = axial log(E(u)^T exp(skew(theta_i)) R_i E0),
+// depends on u only through the spin omega(u), so it is differentiated with
+// respect to the 6 variables (omega, theta_i) and chained with the
+// derivatives of omega(u).
+
+#include <coshell/element/corotational.h>
+
+#include <deal.II/lac/vector.h>
+
+#include <Sacado.hpp>
+
+#include <cmath>
+#include <type_traits>
+
+namespace coshell::element
+{
+  namespace
+  {
+    template<typename T>
+    using Vec3 = std::array<T, 3>;
+    /// Row-major 3x3 matrix.
+    template<typename T>
+    using Mat3 = std::array<Vec3<T>, 3>;
+    /// The AD type of a mixed double/AD operation.
+    template<typename A, typename B>
+    using Product = std::conditional_t<std::is_same_v<A, double>, B, A>;
+
+    template<typename T>
+    double value_of(const T &x)
+    {
+      return Sacado::ScalarValue<T>::eval(x);
+    }
+
+    // ---- small vector algebra for double and AD scalars --------------------
+
+    template<typename A, typename B>
+    Product<A, B> dot(const Vec3<A> &a, const Vec3<B> &b)
+    {
+      return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    }
+
+    template<typename T>
+    Vec3<T> cross(const Vec3<T> &a, const Vec3<T> &b)
+    {
+      return {{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
+               a[0] * b[1] - a[1] * b[0]}};
+    }
+
+    template<typename T>
+    Vec3<T> operator-(const Vec3<T> &a, const Vec3<T> &b)
+    {
+      return {{a[0] - b[0], a[1] - b[1], a[2] - b[2]}};
+    }
+
+    template<typename T, typename S>
+    Vec3<T> scaled(const S &factor, const Vec3<T> &a)
+    {
+      return {{factor * a[0], factor * a[1], factor * a[2]}};
+    }
+
+    template<typename T>
+    Vec3<T> normalized(const Vec3<T> &a)
+    {
+      using std::sqrt;
+      const T inverse_length = 1.0 / sqrt(dot(a, a));
+      return scaled(inverse_length, a);
+    }
+
+    template<typename A, typename B>
+    Mat3<Product<A, B>> product(const Mat3<A> &a, const Mat3<B> &b)
+    {
+      Mat3<Product<A, B>> c;
+      for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int j = 0; j < 3; ++j)
+          c[i][j] = a[i][0] * b[0][j] + a[i][1] * b[1][j] + a[i][2] * b[2][j];
+      return c;
+    }
+
+    template<typename T>
+    Mat3<double> values_of(const Mat3<T> &a)
+    {
+      Mat3<double> v;
+      for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int j = 0; j < 3; ++j)
+          v[i][j] = value_of(a[i][j]);
+      return v;
+    }
+
+    Mat3<double> to_mat3(const Tensor<2, 3> &t)
+    {
+      Mat3<double> m;
+      for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int j = 0; j < 3; ++j)
+          m[i][j] = t[i][j];
+      return m;
+    }
+
+    // ---- rotation maps -----------------------------------------------------
+
+    // Below this squared argument the smooth functions of the rotation maps
+    // are evaluated by their Taylor series: the closed forms are singular
+    // at 0 (AD differentiates them) and lose digits in their derivatives.
+    constexpr double series_limit = 1e-2;
+
+    template<typename T, std::size_t n>
+    T power_series(const T &y, const std::array<double, n> &coefficients)
+    {
+      T sum = coefficients[n - 1];
+      for (std::size_t k = n - 1; k-- > 0;)
+        sum = sum * y + coefficients[k];
+      return sum;
+    }
+
+    // exp(skew(theta)) = I + sin(t)/t W + (1 - cos t)/t^2 W^2, W = skew(theta),
+    // W^2 = theta theta^T - t^2 I.
+    template<typename T>
+    Mat3<T> exp_map(const Vec3<T> &theta)
+    {
+      using std::sin;
+      using std::sqrt;
+      const T angle_squared = dot(theta, theta);
+      T       sin_ratio, cos_ratio; // sin(t)/t, (1 - cos t)/t^2
+      if (value_of(angle_squared) < series_limit)
+      {
+        // Coefficients (-1)^k / (2k+1)! and (-1)^k / (2k+2)!.
+        sin_ratio = power_series(
+            angle_squared, std::array<double, 5>{{1.0, -1.0 / 6, 1.0 / 120,
+                                                  -1.0 / 5040, 1.0 / 362880}});
+        cos_ratio =
+            power_series(angle_squared,
+                         std::array<double, 5>{{0.5, -1.0 / 24, 1.0 / 720,
+                                                -1.0 / 40320, 1.0 / 3628800}});
+      }
+      else
+      {
+        const T angle      = sqrt(angle_squared);
+        const T half_ratio = sin(0.5 * angle) / angle;
+        sin_ratio          = sin(angle) / angle;
+        cos_ratio          = 2.0 * half_ratio * half_ratio; // no cancellation
+      }
+      Mat3<T> rotation;
+      for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int j = 0; j < 3; ++j)
+          rotation[i][j] = cos_ratio * theta[i] * theta[j];
+      for (unsigned int i = 0; i < 3; ++i)
+      {
+        const unsigned int j = (i + 1) % 3, k = (i + 2) % 3;
+        rotation[i][i] += 1.0 - cos_ratio * angle_squared;
+        rotation[k][j] += sin_ratio * theta[i];
+        rotation[j][k] -= sin_ratio * theta[i];
+      }
+      return rotation;
+    }
+
+    // Unit quaternion (w, x, y, z) of a rotation by Shepperd's method: the
+    // square root is taken of the largest of 4w^2, 4x^2, 4y^2, 4z^2 (which
+    // is >= 1), and the sign makes w >= 0, i.e. the angle lies in [0, pi].
+    template<typename T>
+    std::array<T, 4> unit_quaternion(const Mat3<T> &r)
+    {
+      using std::sqrt;
+      const T trace = r[0][0] + r[1][1] + r[2][2];
+      int     pivot = -1; // -1: w, else the vector component
+      double  best  = value_of(trace);
+      for (int i = 0; i < 3; ++i)
+        if (value_of(r[i][i]) > best)
+        {
+          pivot = i;
+          best  = value_of(r[i][i]);
+        }
+
+      std::array<T, 4> q;
+      if (pivot < 0)
+      {
+        q[0]            = 0.5 * sqrt(1.0 + trace);
+        const T quarter = 0.25 / q[0];
+        for (unsigned int i = 0; i < 3; ++i)
+        {
+          const unsigned int j = (i + 1) % 3, k = (i + 2) % 3;
+          q[1 + i] = (r[k][j] - r[j][k]) * quarter;
+        }
+        return q;
+      }
+      const int i = pivot, j = (i + 1) % 3, k = (i + 2) % 3;
+      q[1 + i]        = 0.5 * sqrt(1.0 + 2.0 * r[i][i] - trace);
+      const T quarter = 0.25 / q[1 + i];
+      q[0]            = (r[k][j] - r[j][k]) * quarter;
+      q[1 + j]        = (r[j][i] + r[i][j]) * quarter;
+      q[1 + k]        = (r[k][i] + r[i][k]) * quarter;
+      if (value_of(q[0]) < 0.0)
+        for (T &component : q)
+          component = -component;
+      return q;
+    }
+
+    // theta = 2 atan2(s, w) / s v for the quaternion (w, v), s = |v|.
+    template<typename T>
+    Vec3<T> log_map(const Mat3<T> &rotation)
+    {
+      using std::atan2;
+      using std::sqrt;
+      const std::array<T, 4> q         = unit_quaternion(rotation);
+      const Vec3<T>          v         = {{q[1], q[2], q[3]}};
+      const T                s_squared = dot(v, v);
+      T                      factor;
+      if (value_of(s_squared) < series_limit * value_of(q[0]) * value_of(q[0]))
+      {
+        // 2/w atan(x)/x with x^2 = s^2 / w^2; coefficients (-1)^k / (2k+1).
+        const std::array<double, 8> atan_ratio = {{1.0, -1.0 / 3, 1.0 / 5,
+                                                   -1.0 / 7, 1.0 / 9, -1.0 / 11,
+                                                   1.0 / 13, -1.0 / 15}};
+        const T                     x_squared  = s_squared / (q[0] * q[0]);
+        factor = 2.0 / q[0] * power_series(x_squared, atan_ratio);
+      }
+      else
+      {
+        const T s = sqrt(s_squared);
+        factor    = 2.0 * atan2(s, q[0]) / s;
+      }
+      return scaled(factor, v);
+    }
+
+    // ---- co-rotated frame --------------------------------------------------
+
+    template<typename T>
+    struct CorotatedConfiguration
+    {
+      Mat3<T>                         axes;         ///< rows e1, e2, e3
+      std::array<std::array<T, 2>, 3> translations; ///< deformational (u, v)
+    };
+
+    // e3 is the current normal. In-plane, the frame is turned by the polar
+    // rotation of the (constant) deformation gradient F from the initial to
+    // the current coordinates, so that it does not depend on which vertex
+    // comes first and carries E0 rigidly at zero strain.
+    template<typename T>
+    CorotatedConfiguration<T> corotate(const CorotationalReference  &reference,
+                                       const std::array<Vec3<T>, 3> &x)
+    {
+      using std::atan2;
+      using std::cos;
+      using std::sin;
+      const Vec3<T> edge_1 = x[1] - x[0];
+      const Vec3<T> edge_2 = x[2] - x[0];
+      const Vec3<T> e3     = normalized(cross(edge_1, edge_2));
+      const Vec3<T> t1     = normalized(edge_1);
+      const Vec3<T> t2     = cross(e3, t1);
+
+      // Coordinates in (t1, t2) about the centroid.
+      Vec3<T> centroid;
+      for (unsigned int c = 0; c < 3; ++c)
+        centroid[c] = (x[0][c] + x[1][c] + x[2][c]) / 3.0;
+      std::array<std::array<T, 2>, 3> y;
+      for (unsigned int i = 0; i < 3; ++i)
+      {
+        const Vec3<T> offset = x[i] - centroid;
+        y[i]                 = {{dot(offset, t1), dot(offset, t2)}};
+      }
+
+      // F = [y1 - y0, y2 - y0] [X1 - X0, X2 - X0]^-1 and its polar angle.
+      const auto &inverse = reference.inverse_edges;
+      T           f[2][2];
+      for (unsigned int a = 0; a < 2; ++a)
+        for (unsigned int b = 0; b < 2; ++b)
+          f[a][b] = (y[1][a] - y[0][a]) * inverse[0][b] +
+                    (y[2][a] - y[0][a]) * inverse[1][b];
+      const T angle = atan2(f[1][0] - f[0][1], f[0][0] + f[1][1]);
+      const T c = cos(angle), s = sin(angle);
+
+      CorotatedConfiguration<T> result;
+      for (unsigned int r = 0; r < 3; ++r)
+      {
+        result.axes[0][r] = c * t1[r] + s * t2[r];
+        result.axes[1][r] = c * t2[r] - s * t1[r];
+      }
+      result.axes[2] = e3;
+      for (unsigned int i = 0; i < 3; ++i)
+      {
+        const Point<2> &initial   = reference.coordinates[i];
+        result.translations[i][0] = c * y[i][0] + s * y[i][1] - initial[0];
+        result.translations[i][1] = c * y[i][1] - s * y[i][0] - initial[1];
+      }
+      return result;
+    }
+
+    // Spin omega with E(u) = exp(skew(omega)) E(0), to second order in u:
+    // with D = E(u) E(0)^T - I = O(u), log(I + D) = D - D^2/2 + O(u^3).
+    template<typename T>
+    Vec3<T> frame_spin(const Mat3<T> &axes, const Mat3<double> &axes_at_zero)
+    {
+      Mat3<T> d;
+      for (unsigned int r = 0; r < 3; ++r)
+        for (unsigned int s = 0; s < 3; ++s)
+          d[r][s] = axes[0][r] * axes_at_zero[0][s] +
+                    axes[1][r] * axes_at_zero[1][s] +
+                    axes[2][r] * axes_at_zero[2][s] - (r == s ? 1.0 : 0.0);
+      const Mat3<T> d_squared = product(d, d);
+      Vec3<T>       spin;
+      for (unsigned int i = 0; i < 3; ++i)
+      {
+        const unsigned int j = (i + 1) % 3, k = (i + 2) % 3;
+        spin[i] = 0.5 * ((d[k][j] - d[j][k]) -
+                         0.5 * (d_squared[k][j] - d_squared[j][k]));
+      }
+      return spin;
+    }
+
+    // The current triad of a node, R_i E0, as a matrix with the triad
+    // vectors as columns.
+    Mat3<double> nodal_triad(const Tensor<2, 3>          &rotation,
+                             const CorotationalReference &reference)
+    {
+      Mat3<double> triad;
+      for (unsigned int b = 0; b < 3; ++b)
+      {
+        const Tensor<1, 3> column = rotation * reference.frame.axes[b];
+        for (unsigned int r = 0; r < 3; ++r)
+          triad[r][b] = column[r];
+      }
+      return triad;
+    }
+
+    // axial log(E^T exp(-omega) exp(theta) R_i E0): the deformational
+    // rotation of a node once the frame is spun by omega and the node
+    // rotated by theta (E^T = axes, R_i E0 = triad).
+    template<typename T>
+    Vec3<T> deformational_rotation(const Mat3<double> &axes,
+                                   const Mat3<double> &triad,
+                                   const Vec3<T>      &spin,
+                                   const Vec3<T>      &theta)
+    {
+      const Mat3<T> perturbation =
+          product(exp_map(scaled(-1.0, spin)), exp_map(theta));
+      return log_map(product(product(axes, perturbation), triad));
+    }
+
+    // ---- deformational DOFs and their derivatives -------------------------
+
+    /// Index of translation component k = 3 * vertex + c among the 18 DOFs.
+    constexpr unsigned int translation_dof(unsigned int k)
+    {
+      return 6 * (k / 3) + k % 3;
+    }
+
+    constexpr unsigned int rotation_dof(unsigned int vertex, unsigned int c)
+    {
+      return 6 * vertex + 3 + c;
+    }
+
+    /// Forward AD of order 1 (gradient) or 2 (gradient and Hessian) in n
+    /// variables; order 0 is plain evaluation.
+    template<int order, int n>
+    struct Jet;
+
+    template<int n>
+    struct Jet<0, n>
+    {
+      using type = double;
+      static type variable(double value, int)
+      {
+        return value;
+      }
+    };
+
+    template<int n>
+    struct Jet<1, n>
+    {
+      using type = Sacado::Fad::SFad<double, n>;
+      static type variable(double value, int k)
+      {
+        return type(n, k, value);
+      }
+      static double derivative(const type &x, int k)
+      {
+        return x.dx(k);
+      }
+    };
+
+    template<int n>
+    struct Jet<2, n>
+    {
+      using inner = Sacado::Fad::SFad<double, n>;
+      using type  = Sacado::Fad::SFad<inner, n>;
+      static type variable(double value, int k)
+      {
+        return type(n, k, inner(n, k, value));
+      }
+      static double derivative(const type &x, int k)
+      {
+        return x.val().dx(k);
+      }
+      static double second_derivative(const type &x, int k, int l)
+      {
+        return x.dx(k).dx(l);
+      }
+    };
+
+    void require_nondegenerate(const SpatialTriangle &current)
+    {
+      make_element_frame(current); // throws DegenerateTriangle
+    }
+
+    // d and its derivatives with respect to the perturbation p at p = 0:
+    // translations u (9 AD variables) drive the frame; each node's rotation
+    // is differentiated with respect to (omega, theta_i) (6 variables).
+    // Order 0 gives d alone.
+    template<int order>
+    class CorotatedKinematics
+    {
+    public:
+      CorotatedKinematics(const CorotationalReference &reference,
+                          const SpatialTriangle       &current,
+                          const NodalRotations        &rotations)
+      {
+        require_nondegenerate(current);
+        std::array<Vec3<Translational>, 3> x;
+        for (unsigned int k = 0; k < 9; ++k)
+          x[k / 3][k % 3] = TranslationJet::variable(current[k / 3][k % 3], k);
+        const CorotatedConfiguration<Translational> configuration =
+            corotate(reference, x);
+        translations = configuration.translations;
+        axes         = values_of(configuration.axes);
+        if constexpr (order > 0)
+          spin = frame_spin(configuration.axes, axes);
+
+        Vec3<Rotational> spin_variables, theta_variables;
+        for (unsigned int c = 0; c < 3; ++c)
+        {
+          spin_variables[c]  = RotationJet::variable(0.0, c);
+          theta_variables[c] = RotationJet::variable(0.0, 3 + c);
+        }
+        for (unsigned int i = 0; i < 3; ++i)
+          nodal_rotations[i] =
+              deformational_rotation(axes, nodal_triad(rotations[i], reference),
+                                     spin_variables, theta_variables);
+      }
+
+      /// Rows e1, e2, e3 of the current co-rotated frame.
+      const Mat3<double> &frame() const
+      {
+        return axes;
+      }
+
+      ShellDisplacements dofs() const
+      {
+        ShellDisplacements d{};
+        for (unsigned int i = 0; i < 3; ++i)
+          for (unsigned int c = 0; c < 3; ++c)
+          {
+            if (c < 2)
+              d[6 * i + c] = value_of(translations[i][c]);
+            d[rotation_dof(i, c)] = value_of(nodal_rotations[i][c]);
+          }
+        return d;
+      }
+
+      /// J = dd/dp (18 x 18); the rows of w are zero.
+      FullMatrix<double> jacobian() const
+      {
+        FullMatrix<double> j(shell_dofs, shell_dofs);
+        for (unsigned int i = 0; i < 3; ++i)
+          for (unsigned int k = 0; k < 9; ++k)
+            for (unsigned int c = 0; c < 2; ++c)
+              j(6 * i + c, translation_dof(k)) =
+                  TranslationJet::derivative(translations[i][c], k);
+
+        for (unsigned int i = 0; i < 3; ++i)
+          for (unsigned int a = 0; a < 3; ++a)
+          {
+            const Rotational &theta = nodal_rotations[i][a];
+            for (unsigned int k = 0; k < 9; ++k)
+              for (unsigned int m = 0; m < 3; ++m)
+                j(rotation_dof(i, a), translation_dof(k)) +=
+                    RotationJet::derivative(theta, m) *
+                    TranslationJet::derivative(spin[m], k);
+            for (unsigned int b = 0; b < 3; ++b)
+              j(rotation_dof(i, a), rotation_dof(i, b)) =
+                  RotationJet::derivative(theta, 3 + b);
+          }
+        return j;
+      }
+
+      /// sum_k weights_k d^2 d_k / dp^2 (order 2 only).
+      FullMatrix<double>
+      weighted_hessian(const dealii::Vector<double> &weights) const
+      {
+        static_assert(order == 2, "second derivatives need order 2");
+        FullMatrix<double> h(shell_dofs, shell_dofs);
+        for (unsigned int k = 0; k < 9; ++k)
+          for (unsigned int l = 0; l < 9; ++l)
+            for (unsigned int i = 0; i < 3; ++i)
+              for (unsigned int c = 0; c < 2; ++c)
+                h(translation_dof(k), translation_dof(l)) +=
+                    weights[6 * i + c] *
+                    TranslationJet::second_derivative(translations[i][c], k, l);
+        for (unsigned int i = 0; i < 3; ++i)
+          add_rotation_hessian(i, weights, h);
+        return h;
+      }
+
+    private:
+      using TranslationJet = Jet<order, 9>;
+      using RotationJet    = Jet<order, 6>;
+      using Translational  = typename TranslationJet::type;
+      using Rotational     = typename RotationJet::type;
+
+      // Chain rule through omega(u) for psi = sum_a w_a theta_d,a(omega,
+      // theta): psi_uu = Omega^T psi_ww Omega + psi_w . omega_uu, psi_ut =
+      // Omega^T psi_wt, with Omega = d omega / du.
+      void add_rotation_hessian(unsigned int                  i,
+                                const dealii::Vector<double> &weights,
+                                FullMatrix<double>           &h) const
+      {
+        double psi_hessian[6][6] = {};
+        double psi_spin[3]       = {};
+        for (unsigned int a = 0; a < 3; ++a)
+        {
+          const double      weight = weights[rotation_dof(i, a)];
+          const Rotational &theta  = nodal_rotations[i][a];
+          for (unsigned int m = 0; m < 6; ++m)
+          {
+            if (m < 3)
+              psi_spin[m] += weight * RotationJet::derivative(theta, m);
+            for (unsigned int n = 0; n < 6; ++n)
+              psi_hessian[m][n] +=
+                  weight * RotationJet::second_derivative(theta, m, n);
+          }
+        }
+
+        double spin_gradient[3][9];
+        for (unsigned int m = 0; m < 3; ++m)
+          for (unsigned int k = 0; k < 9; ++k)
+            spin_gradient[m][k] = TranslationJet::derivative(spin[m], k);
+
+        // Omega^T psi_w. over the 6 columns (omega, theta).
+        double mixed[9][6] = {};
+        for (unsigned int k = 0; k < 9; ++k)
+          for (unsigned int n = 0; n < 6; ++n)
+            for (unsigned int m = 0; m < 3; ++m)
+              mixed[k][n] += spin_gradient[m][k] * psi_hessian[m][n];
+
+        for (unsigned int k = 0; k < 9; ++k)
+        {
+          for (unsigned int l = 0; l < 9; ++l)
+          {
+            double value = 0.0;
+            for (unsigned int m = 0; m < 3; ++m)
+              value += mixed[k][m] * spin_gradient[m][l] +
+                       psi_spin[m] *
+                           TranslationJet::second_derivative(spin[m], k, l);
+            h(translation_dof(k), translation_dof(l)) += value;
+          }
+          for (unsigned int b = 0; b < 3; ++b)
+          {
+            h(translation_dof(k), rotation_dof(i, b)) += mixed[k][3 + b];
+            h(rotation_dof(i, b), translation_dof(k)) += mixed[k][3 + b];
+          }
+        }
+        for (unsigned int a = 0; a < 3; ++a)
+          for (unsigned int b = 0; b < 3; ++b)
+            h(rotation_dof(i, a), rotation_dof(i, b)) +=
+                psi_hessian[3 + a][3 + b];
+      }
+
+      std::array<std::array<Translational, 2>, 3> translations{};
+      Vec3<Translational>                         spin{}; ///< order > 0
+      std::array<Vec3<Rotational>, 3>             nodal_rotations{};
+      Mat3<double>                                axes{};
+    };
+
+    // ---- forces and tangents ----------------------------------------------
+
+    dealii::Vector<double> to_vector(const ShellDisplacements &a)
+    {
+      return dealii::Vector<double>(a.begin(), a.end());
+    }
+
+    // f = J^T g.
+    ShellDisplacements transpose_times(const FullMatrix<double>     &j,
+                                       const dealii::Vector<double> &g)
+    {
+      dealii::Vector<double> f(shell_dofs);
+      j.Tvmult(f, g);
+      ShellDisplacements result;
+      std::copy(f.begin(), f.end(), result.begin());
+      return result;
+    }
+
+    // Under R <- exp(a) R the force at a state already updated by exp(b)
+    // sees exp(a) exp(b) = exp(a + b + a x b / 2 + ...), so d f_a / d b
+    // gains 1/2 eps_kab m_k = -1/2 skew(m)_ab on each node's rotation block,
+    // m being that node's moment.
+    void add_rotation_update_term(const ShellDisplacements &force,
+                                  FullMatrix<double>       &tangent)
+    {
+      for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int a = 0; a < 3; ++a)
+        {
+          const unsigned int b = (a + 1) % 3, k = (a + 2) % 3;
+          const double       half_moment = 0.5 * force[rotation_dof(i, k)];
+          tangent(rotation_dof(i, a), rotation_dof(i, b)) += half_moment;
+          tangent(rotation_dof(i, b), rotation_dof(i, a)) -= half_moment;
+        }
+    }
+
+    // T K_l T^T with T = diag(E, ..., E): the local stiffness rotated to
+    // global axes along the current frame only. Block by block,
+    // E K_IJ E^T with E = [e1 e2 e3] (axes holds its rows' transposes).
+    FullMatrix<double> rotated_stiffness(const FullMatrix<double> &local,
+                                         const Mat3<double>       &axes)
+    {
+      FullMatrix<double> global(shell_dofs, shell_dofs);
+      for (unsigned int row = 0; row < shell_dofs; ++row)
+        for (unsigned int column = 0; column < shell_dofs; ++column)
+        {
+          const unsigned int r = row % 3, c = column % 3;
+          for (unsigned int a = 0; a < 3; ++a)
+            for (unsigned int b = 0; b < 3; ++b)
+              global(row, column) +=
+                  axes[a][r] * local(row - r + a, column - c + b) * axes[b][c];
+        }
+      return global;
+    }
+
+    CorotationalReference make_reference(const SpatialTriangle &initial)
+    {
+      CorotationalReference reference;
+      reference.frame         = make_element_frame(initial);
+      const auto    &planar   = reference.frame.planar;
+      const Point<2> centroid = (planar[0] + planar[1] + planar[2]) / 3.0;
+      for (unsigned int i = 0; i < 3; ++i)
+        reference.coordinates[i] = Point<2>(planar[i] - centroid);
+
+      const Tensor<1, 2> edge_1 = planar[1] - planar[0];
+      const Tensor<1, 2> edge_2 = planar[2] - planar[0];
+      const double       det    = edge_1[0] * edge_2[1] - edge_2[0] * edge_1[1];
+      reference.inverse_edges   = {{{{edge_2[1] / det, -edge_2[0] / det}},
+                                    {{-edge_1[1] / det, edge_1[0] / det}}}};
+      return reference;
+    }
+  } // namespace
+
+  CorotationalShell::CorotationalShell(const SpatialTriangle     &initial,
+                                       const ShellMaterial       &material,
+                                       const ShellElementOptions &options)
+      : reference(make_reference(initial)), material(material),
+        options(options),
+        stiffness(shell_stiffness_local(reference.frame, material, options))
+  {
+  }
+
+  ShellDisplacements
+  CorotationalShell::deformational_dofs(const SpatialTriangle &current,
+                                        const NodalRotations  &rotations) const
+  {
+    return CorotatedKinematics<0>(reference, current, rotations).dofs();
+  }
+
+  double CorotationalShell::energy(const SpatialTriangle &current,
+                                   const NodalRotations  &rotations) const
+  {
+    const dealii::Vector<double> d =
+        to_vector(deformational_dofs(current, rotations));
+    return 0.5 * stiffness.matrix_norm_square(d);
+  }
+
+  void CorotationalShell::internal_force(const SpatialTriangle &current,
+                                         const NodalRotations  &rotations,
+                                         CorotationalTangent    tangent_type,
+                                         ShellDisplacements    &force,
+                                         FullMatrix<double>    *tangent) const
+  {
+    // g = K_l d is the force conjugate to d; f = J^T g.
+    const auto local_force = [&](const ShellDisplacements &d)
+    {
+      dealii::Vector<double> g(shell_dofs);
+      stiffness.vmult(g, to_vector(d));
+      return g;
+    };
+
+    if (tangent != nullptr && tangent_type == CorotationalTangent::consistent)
+    {
+      // K = J^T K_l J + sum_k g_k d^2 d_k/dp^2 + rotation-update term.
+      const CorotatedKinematics<2> jets(reference, current, rotations);
+      const ShellDisplacements     d = jets.dofs();
+      const dealii::Vector<double> g = local_force(d);
+      const FullMatrix<double>     j = jets.jacobian();
+      force                          = transpose_times(j, g);
+      tangent->reinit(shell_dofs, shell_dofs);
+      tangent->triple_product(stiffness, j, j, true, false);
+      tangent->add(1.0, jets.weighted_hessian(g));
+      add_rotation_update_term(force, *tangent);
+      return;
+    }
+
+    const CorotatedKinematics<1> jets(reference, current, rotations);
+    force = transpose_times(jets.jacobian(), local_force(jets.dofs()));
+    if (tangent != nullptr)
+      *tangent = rotated_stiffness(stiffness, jets.frame());
+  }
+
+  ShellResultants
+  CorotationalShell::resultants(const SpatialTriangle &current,
+                                const NodalRotations  &rotations) const
+  {
+    // The initial shape carried rigidly onto the current frame has that
+    // frame as its element frame and the initial planar coordinates, so
+    // the linear resultants apply to it with d rotated to global axes.
+    const CorotatedKinematics<0> state(reference, current, rotations);
+    const Mat3<double>          &axes = state.frame();
+    const ShellDisplacements     d    = state.dofs();
+    const Point<3> centroid((current[0] + current[1] + current[2]) / 3.0);
+    const auto     to_global = [&](double a, double b, double c)
+    {
+      Tensor<1, 3> v;
+      for (unsigned int r = 0; r < 3; ++r)
+        v[r] = a * axes[0][r] + b * axes[1][r] + c * axes[2][r];
+      return v;
+    };
+
+    SpatialTriangle    carried;
+    ShellDisplacements global;
+    for (unsigned int i = 0; i < 3; ++i)
+      carried[i] = centroid + to_global(reference.coordinates[i][0],
+                                        reference.coordinates[i][1], 0.0);
+    for (unsigned int block = 0; block < 6; ++block)
+    {
+      const Tensor<1, 3> v =
+          to_global(d[3 * block], d[3 * block + 1], d[3 * block + 2]);
+      for (unsigned int r = 0; r < 3; ++r)
+        global[3 * block + r] = v[r];
+    }
+    return shell_resultants(carried, material, options, global);
+  }
+
+  Tensor<2, 3> rotation_exp(const Tensor<1, 3> &theta)
+  {
+    const Mat3<double> r =
+        exp_map(Vec3<double>{{theta[0], theta[1], theta[2]}});
+    Tensor<2, 3> result;
+    for (unsigned int i = 0; i < 3; ++i)
+      for (unsigned int j = 0; j < 3; ++j)
+        result[i][j] = r[i][j];
+    return result;
+  }
+
+  Tensor<1, 3> rotation_log(const Tensor<2, 3> &rotation)
+  {
+    const Vec3<double> theta = log_map(to_mat3(rotation));
+    return Tensor<1, 3>({theta[0], theta[1], theta[2]});
+  }
+} // namespace coshell::element

@@ -1,0 +1,130 @@
+#!/usr/bin/python3
+"""Runs a nonlinear coshell scene and checks its load-displacement path and
+Newton history against references given here.
+
+  check_nonlinear.py --coshell BIN --prm FILE --output DIR [--set A/B=v ...]
+     [--point QOI LOAD_FACTOR REFERENCE]...  value at that load factor
+     [--rtol R] [--length L]   |value - reference| <= R * max(|reference|, L)
+     [--min-order P]           some Newton iteration shows convergence order
+                               >= P (log r_{k+1} / log r_k, relative residuals)
+     [--max-iterations N]      no step needs more than N iterations
+     [--limit-point]           the load factor rises, then falls (a limit point
+                               was passed) while the QOI of --monotone grows
+     [--monotone QOI]
+"""
+import argparse
+import csv
+import math
+import os
+import shutil
+import subprocess
+import sys
+
+
+def read_csv(path):
+    with open(path) as f:
+        return list(csv.DictReader(f))
+
+
+def check_points(rows, points, rtol, length):
+    failures = []
+    for name, factor, reference in points:
+        factor, reference = float(factor), float(reference)
+        row = min(rows, key=lambda r: abs(float(r["load_factor"]) - factor))
+        if abs(float(row["load_factor"]) - factor) > 1e-9:
+            failures.append(f"no step at load factor {factor}")
+            continue
+        value = float(row[name])
+        scale = max(abs(reference), length)
+        error = abs(value - reference) / scale
+        verdict = "ok" if error <= rtol else "FAIL"
+        print(f"{name} at load factor {factor}: {value:.6g} vs {reference:.6g} "
+              f"-> error {error:.3e} of {scale:.4g} (tolerance {rtol}) {verdict}")
+        if verdict != "ok":
+            failures.append(f"{name} at {factor}")
+    return failures
+
+
+def convergence_orders(history):
+    """Observed orders p = log(r2/r1) / log(r1/r0) for three consecutive
+    relative residuals of a step in the asymptotic range (r0 < 1e-2,
+    decreasing, r2 above round-off 1e-13). This estimate is independent of
+    the constant C in r_{k+1} = C r_k^p."""
+    orders = []
+    steps = {}
+    for row in history:
+        steps.setdefault(row["step"], []).append(float(row["relative_residual"]))
+    for residuals in steps.values():
+        for r0, r1, r2 in zip(residuals, residuals[1:], residuals[2:]):
+            if r0 < 1e-2 and r2 < r1 < r0 and r2 > 1e-13:
+                orders.append(math.log(r2 / r1) / math.log(r1 / r0))
+    return orders
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--coshell", required=True)
+    parser.add_argument("--prm", required=True)
+    parser.add_argument("--output", required=True)
+    parser.add_argument("--set", action="append", default=[])
+    parser.add_argument("--point", nargs=3, action="append", default=[])
+    parser.add_argument("--rtol", type=float, default=0.01)
+    parser.add_argument("--length", type=float, default=0.0)
+    parser.add_argument("--min-order", type=float)
+    parser.add_argument("--max-iterations", type=int)
+    parser.add_argument("--limit-point", action="store_true")
+    parser.add_argument("--monotone")
+    args = parser.parse_args()
+
+    if os.path.isdir(args.output):
+        shutil.rmtree(args.output)
+    command = [args.coshell, args.prm, "--output", args.output]
+    for assignment in args.set:
+        command += ["--set", assignment]
+    print("running:", " ".join(repr(c) for c in command), flush=True)
+    if subprocess.run(command).returncode != 0:
+        sys.exit("FAIL: coshell exited with an error")
+    rows = read_csv(os.path.join(args.output, "load_displacement.csv"))
+    history = read_csv(os.path.join(args.output, "newton_history.csv"))
+
+    failures = check_points(rows, args.point, args.rtol, args.length)
+    checks = len(args.point)
+    if args.min_order is not None:
+        checks += 1
+        orders = convergence_orders(history)
+        best = max(orders, default=0)
+        print(f"best observed Newton convergence order: {best:.2f} "
+              f"(required >= {args.min_order})")
+        if best < args.min_order:
+            failures.append("no quadratic convergence observed")
+    if args.max_iterations is not None:
+        checks += 1
+        worst = max(int(r["iterations"]) for r in rows)
+        print(f"most Newton iterations in a step: {worst} (limit {args.max_iterations})")
+        if worst > args.max_iterations:
+            failures.append("too many iterations")
+    if args.limit_point:
+        checks += 1
+        factors = [float(r["load_factor"]) for r in rows]
+        peaks = [i for i in range(1, len(factors) - 1)
+                 if factors[i - 1] < factors[i] > factors[i + 1]]
+        passed = bool(peaks)
+        growing = all(float(b[args.monotone]) * float(rows[-1][args.monotone]) >= 0
+                      for b in rows) if args.monotone else True
+        if args.monotone:
+            values = [abs(float(r[args.monotone])) for r in rows]
+            growing = growing and all(b > a for a, b in zip(values, values[1:]))
+        for i in peaks:
+            print(f"limit point: load factor {factors[i]:.5g} at step {i + 1}")
+        if not passed:
+            failures.append("no limit point passed")
+        if not growing:
+            failures.append(f"|{args.monotone}| did not grow at every step")
+    for f in failures:
+        print("FAIL:", f)
+    print(f"{checks - len(failures)} passed, {len(failures)} failed")
+    sys.exit(1 if failures else 0)
+
+
+if __name__ == "__main__":
+    main()
