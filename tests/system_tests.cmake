@@ -4,6 +4,7 @@
 set(COSHELL_RUN_AND_CHECK ${CMAKE_CURRENT_SOURCE_DIR}/scripts/run_and_check.py)
 set(COSHELL_EXPECT_FAILURE ${CMAKE_CURRENT_SOURCE_DIR}/scripts/expect_failure.py)
 set(COSHELL_PRM ${CMAKE_SOURCE_DIR}/prm)
+set(no_vtu "Output/Write VTU=false")
 
 # coshell_scene_test(NAME PRM [LABELS l...] ARGS run_and_check arguments...)
 function(coshell_scene_test name prm)
@@ -34,3 +35,5 @@ endfunction()
 include(${CMAKE_CURRENT_SOURCE_DIR}/plate_tests.cmake)
 include(${CMAKE_CURRENT_SOURCE_DIR}/bad_input_tests.cmake)
 include(${CMAKE_CURRENT_SOURCE_DIR}/nonlinear_tests.cmake)
+set(COSHELL_TESTED_MEMBRANES cst)
+include(${CMAKE_CURRENT_SOURCE_DIR}/obstacle_course_tests.cmake)

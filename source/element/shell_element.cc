@@ -63,6 +63,31 @@ namespace coshell::element
                     dealii::outer_product(frame.axes[a], frame.axes[b]);
       return global;
     }
+
+    // The CST has no stiffness of its own on theta_z and gets the drilling
+    // penalty; ANDES resists theta_z itself, so a penalty would only
+    // stiffen it.
+    FullMatrix<double> membrane_stiffness(const PlanarTriangle      &triangle,
+                                          const ShellMaterial       &material,
+                                          const ShellElementOptions &options)
+    {
+      if (*options.membrane == MembraneElement::andes)
+        return andes_stiffness(triangle, material);
+      FullMatrix<double> membrane = cst_stiffness(triangle, material);
+      add_drilling_penalty(triangle, material, options.drilling_factor,
+                           membrane);
+      return membrane;
+    }
+
+    MembraneForces membrane_forces(MembraneElement              type,
+                                   const PlanarTriangle        &triangle,
+                                   const ShellMaterial         &material,
+                                   const MembraneDisplacements &dofs)
+    {
+      return type == MembraneElement::andes
+                 ? andes_membrane_forces(triangle, material, dofs)
+                 : cst_membrane_forces(triangle, material, dofs);
+    }
   } // namespace
 
   FullMatrix<double> shell_stiffness_local(const ElementFrame        &frame,
@@ -72,12 +97,8 @@ namespace coshell::element
     material.validate();
     FullMatrix<double> local(shell_dofs, shell_dofs);
     if (options.membrane)
-    {
-      FullMatrix<double> membrane = cst_stiffness(frame.planar, material);
-      add_drilling_penalty(frame.planar, material, options.drilling_factor,
-                           membrane);
-      add_sub_element(membrane, membrane_components, local);
-    }
+      add_sub_element(membrane_stiffness(frame.planar, material, options),
+                      membrane_components, local);
     if (options.bending)
       add_sub_element(
           bending_stiffness(*options.bending, frame.planar, material),
@@ -125,8 +146,9 @@ namespace coshell::element
 
     ShellResultants result;
     if (options.membrane)
-      result.membrane_local = cst_membrane_forces(
-          frame.planar, material, sub_element_dofs(local, membrane_components));
+      result.membrane_local =
+          membrane_forces(*options.membrane, frame.planar, material,
+                          sub_element_dofs(local, membrane_components));
     if (options.bending)
       result.bending_local =
           bending_moments(*options.bending, frame.planar, material,

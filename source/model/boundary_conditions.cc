@@ -198,14 +198,34 @@ namespace coshell::model
         "the in-plane edge normal); simply supported soft (u = 0); symmetry "
         "x|y|z (mirror plane with that normal); free; fixed <components> "
         "(e.g. 'fixed ux uz rx'). Example: 0: clamped, 1: symmetry x.");
+    prm.declare_entry(
+        "Point conditions", "", Patterns::Anything(),
+        "Conditions at the vertex nearest a point, as 'x y z : condition' "
+        "entries separated by ';' (e.g. '0 0 10 : fixed uz' to stop a rigid "
+        "translation of a self-equilibrated model).");
     prm.leave_subsection();
   }
 
   void BoundaryConditions::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Boundary conditions");
-    const std::string text = prm.get("Conditions");
+    const std::string text   = prm.get("Conditions");
+    const std::string points = prm.get("Point conditions");
     prm.leave_subsection();
+    point_conditions_.clear();
+    for (const auto &entry : Utilities::split_string_list(points, ';'))
+    {
+      const auto colon = entry.find(':');
+      std::istringstream where(entry.substr(0, colon));
+      Point<3>           point;
+      if (colon == std::string::npos ||
+          !(where >> point[0] >> point[1] >> point[2]))
+        throw std::invalid_argument("Boundary conditions/Point conditions, "
+                                    "entry '" + entry +
+                                    "' is not 'x y z : condition'");
+      point_conditions_.emplace_back(
+          point, parse_boundary_condition(entry.substr(colon + 1)));
+    }
     conditions_.clear();
     for (const auto &entry : Utilities::split_string_list(text, ','))
     {
@@ -255,6 +275,14 @@ namespace coshell::model
           append(at_vertex.rotations, fixed.rotations);
         }
       }
+    for (const auto &[point, condition] : point_conditions_)
+    {
+      const FixedDirections fixed =
+          directions_of(condition, Tensor<1, 3>(), Tensor<1, 3>());
+      auto &at_vertex = fixed_at_vertex[model.nearest_vertex(point)];
+      append(at_vertex.translations, fixed.translations);
+      append(at_vertex.rotations, fixed.rotations);
+    }
     for (const auto &[id, condition] : conditions_)
       if (ids_in_mesh.count(id) == 0)
       {

@@ -24,10 +24,13 @@ namespace coshell::model
                       "solve. corotational: finite rotations (element-"
                       "independent co-rotational frame around the same "
                       "elements), solved by the Nonlinear solver.");
-    prm.declare_entry("Membrane element", "cst", Patterns::Selection("cst|off"),
-                      "In-plane part of the flat shell triangle: the "
-                      "constant-strain triangle, or off (no membrane "
-                      "stiffness, as in the paper's Table 1 runs).");
+    prm.declare_entry(
+        "Membrane element", "cst", Patterns::Selection("cst|andes|off"),
+        "In-plane part of the flat shell triangle: cst (the constant-strain "
+        "triangle plus the drilling penalty below), andes (Felippa's optimal "
+        "ANDES triangle with genuine drilling stiffness, much better in "
+        "in-plane bending; no penalty), or off (no membrane stiffness, as in "
+        "the paper's Table 1 runs).");
     prm.declare_entry("Bending element", "dkt",
                       Patterns::Selection("dkt|przemieniecki|off"),
                       "Plate-bending part: the Discrete Kirchhoff Triangle, "
@@ -36,7 +39,8 @@ namespace coshell::model
     prm.declare_entry("Drilling stiffness factor", "1e-3", Patterns::Double(0),
                       "Dimensionless penalty tying each nodal drilling "
                       "rotation to the membrane's in-plane rotation, "
-                      "k = factor * E h A / 3 (see doc/theory.md).");
+                      "k = factor * E h A / 3 (see doc/theory.md). Used by "
+                      "the cst membrane only.");
     prm.leave_subsection();
   }
 
@@ -63,9 +67,11 @@ namespace coshell::model
                                      ? Formulation::corotational
                                      : Formulation::linear;
     const std::string membrane = prm.get("Membrane element");
-    options.membrane           = membrane == "off"
-                                     ? std::nullopt
-                                     : std::optional(element::MembraneElement::cst);
+    if (membrane == "off")
+      options.membrane = std::nullopt;
+    else
+      options.membrane = membrane == "cst" ? element::MembraneElement::cst
+                                           : element::MembraneElement::andes;
     const std::string bending  = prm.get("Bending element");
     if (bending == "off")
       options.bending = std::nullopt;
@@ -88,7 +94,10 @@ namespace coshell::model
 
   std::string ElementParameters::element_name() const
   {
-    const std::string membrane = options.membrane ? "cst" : "nomembrane";
+    std::string membrane = "nomembrane";
+    if (options.membrane)
+      membrane =
+          *options.membrane == element::MembraneElement::cst ? "cst" : "andes";
     std::string       bending  = "nobending";
     if (options.bending)
       bending = *options.bending == element::BendingElement::dkt

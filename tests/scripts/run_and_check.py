@@ -8,11 +8,16 @@ that a test states its own independent reference.
       [--error-above QOI REFERENCE RTOL]  the method is known to miss the
                                      reference by more than rtol
       [--min-rate RATE]              last observed rate in convergence.csv
+      [--min-self-order P]           order observed from the three finest
+                                     levels alone, p = log2(d1/d2) with
+                                     d = differences of successive values
+                                     (needs no reference; halving h)
       [--max-rate RATE]
 """
 import argparse
 import csv
 import json
+import math
 import os
 import shutil
 import subprocess
@@ -65,6 +70,24 @@ def check_rate(output, low, high):
     return failures
 
 
+def check_self_order(output, minimum):
+    """Observed order and Richardson-extrapolated value from the three
+    finest levels of convergence.csv (h halves between levels)."""
+    with open(os.path.join(output, "convergence.csv")) as f:
+        rows = list(csv.DictReader(f))
+    name = list(rows[0])[4]
+    q1, q2, q3 = (float(r[name]) for r in rows[-3:])
+    d1, d2 = q2 - q1, q3 - q2
+    if d1 == 0 or d2 == 0 or d1 * d2 < 0:
+        print(f"{name}: non-monotone finest levels ({q1}, {q2}, {q3})")
+        return [f"{name} does not converge monotonically"]
+    order = math.log(abs(d1 / d2), 2)
+    extrapolated = q3 + d2 / (2 ** order - 1)
+    print(f"{name}: self-observed order {order:.2f} (required >= {minimum}); "
+          f"Richardson extrapolation {extrapolated:.6g}")
+    return [] if order >= minimum else [f"{name}: order {order:.2f} < {minimum}"]
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--coshell", required=True)
@@ -77,6 +100,7 @@ def main():
                         metavar=("QOI", "REFERENCE", "RTOL"))
     parser.add_argument("--min-rate", type=float)
     parser.add_argument("--max-rate", type=float)
+    parser.add_argument("--min-self-order", type=float)
     args = parser.parse_args()
 
     summary = run_coshell(args)
@@ -84,7 +108,9 @@ def main():
     failures += check_values(summary, args.error_above, False)
     if args.min_rate is not None or args.max_rate is not None:
         failures += check_rate(args.output, args.min_rate, args.max_rate)
-    checks = len(args.value) + len(args.error_above) + (args.min_rate is not None) + (args.max_rate is not None)
+    if args.min_self_order is not None:
+        failures += check_self_order(args.output, args.min_self_order)
+    checks = (args.min_self_order is not None) + len(args.value) + len(args.error_above) + (args.min_rate is not None) + (args.max_rate is not None)
     print(f"{checks - len(failures)} passed, {len(failures)} failed")
     sys.exit(1 if failures else 0)
 

@@ -660,3 +660,29 @@ TEST(CorotationalShell, Timings)
             << ", force + consistent tangent " << consistent_time
             << ", force + paper tangent " << paper_time << std::endl;
 }
+
+// K_l comes from shell_stiffness_local, so the ANDES membrane (genuine
+// drilling stiffness, no penalty) needs nothing of its own here.
+TEST(CorotationalShell, AndesMembraneKeepsTheKernelConsistent)
+{
+  ShellElementOptions options = with_bending(BendingElement::dkt);
+  options.membrane            = MembraneElement::andes;
+  const CorotationalShell element(initial_triangle, thick_material(), options);
+
+  const State deformed = random_deformed_state(initial_triangle, 2);
+  EXPECT_LT(relative_difference(
+                consistent_tangent(element, deformed),
+                finite_difference_tangent(element, deformed, 1e-6)),
+            1e-6);
+
+  const State initial = initial_state(initial_triangle);
+  EXPECT_LT(relative_difference(
+                consistent_tangent(element, initial),
+                shell_stiffness(initial_triangle, thick_material(), options)),
+            1e-10);
+
+  const State moved = rigidly_moved(
+      initial, rotation_matrix(Tensor<1, 3>({0.2, -0.5, 0.8}), 2.0),
+      Tensor<1, 3>({0.3, 2.0, -1.0}));
+  EXPECT_LT(norm(force(element, moved)), 1e-10 * force_scale(element));
+}

@@ -41,4 +41,26 @@ namespace coshell::element
   MembraneForces cst_membrane_forces(const PlanarTriangle        &triangle,
                                      const ShellMaterial         &material,
                                      const MembraneDisplacements &dofs);
+
+  /// The "optimal" ANDES membrane triangle with corner drilling freedoms
+  /// (Felippa 2003, CMAME 192:2125), on the 9 membrane DOFs above:
+  ///   K = K_b + K_h.
+  /// K_b = L C L^T / A is the basic stiffness: L (9x3) lumps a constant
+  /// stress into nodal forces and moments through edge displacements that
+  /// are quadratic in the drilling rotations (Allman-type, alpha_b = 3/2).
+  /// K_h = 3/4 beta_0 T^T K_theta T acts on the hierarchical rotations
+  /// theta_i - theta_0 (theta_0: the constant in-plane rotation of the
+  /// linear part) through corner natural strains with beta_1..9 =
+  /// (1, 2, 1, 0, 1, -1, -1, -1, -2), beta_0 = max((1 - 4 nu^2)/2, 0.01).
+  /// Rank 6 (3 rigid modes), passes the patch test, exact for in-plane
+  /// pure bending of rectangular two-triangle units. Either vertex order.
+  FullMatrix<double> andes_stiffness(const PlanarTriangle &triangle,
+                                     const ShellMaterial  &material);
+
+  /// Centroidal membrane forces of the ANDES triangle: the constant stress
+  /// of the basic part, N = C L^T u / A. The higher-order strains only
+  /// stabilise the element; they are not reported.
+  MembraneForces andes_membrane_forces(const PlanarTriangle        &triangle,
+                                       const ShellMaterial         &material,
+                                       const MembraneDisplacements &dofs);
 } // namespace coshell::element

@@ -9,7 +9,8 @@ namespace coshell::element
 {
   enum class MembraneElement
   {
-    cst ///< constant-strain triangle + drilling penalty
+    cst,  ///< constant-strain triangle + drilling penalty
+    andes ///< optimal ANDES triangle, genuine drilling stiffness (no penalty)
   };
 
   /// What the flat shell element is made of. An unset optional switches
@@ -18,7 +19,8 @@ namespace coshell::element
   {
     std::optional<MembraneElement> membrane = MembraneElement::cst;
     std::optional<BendingElement>  bending  = BendingElement::dkt;
-    /// Dimensionless size of the drilling penalty (see add_drilling_penalty).
+    /// Dimensionless size of the drilling penalty (see add_drilling_penalty);
+    /// used by the CST only.
     double drilling_factor = 1e-3;
   };
 

@@ -34,7 +34,8 @@ namespace coshell::model
   /// "symmetry x|y|z", "free" or "fixed ux uz ...".
   BoundaryCondition parse_boundary_condition(const std::string &text);
 
-  /// prm subsection "Boundary conditions": a map boundary id -> condition.
+  /// prm subsection "Boundary conditions": a map boundary id -> condition,
+  /// and conditions at single vertices nearest given points.
   class BoundaryConditions
   {
   public:
@@ -50,6 +51,7 @@ namespace coshell::model
     const std::map<unsigned int, BoundaryCondition> &conditions() const;
 
   private:
-    std::map<unsigned int, BoundaryCondition> conditions_;
+    std::map<unsigned int, BoundaryCondition>                  conditions_;
+    std::vector<std::pair<dealii::Point<3>, BoundaryCondition>> point_conditions_;
   };
 } // namespace coshell::model
