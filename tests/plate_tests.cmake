@@ -96,3 +96,12 @@ add_test(NAME vtu_output_fields
           --prm ${COSHELL_PRM}/plates/clamped_square_pressure.prm
           --output ${CMAKE_CURRENT_BINARY_DIR}/output/vtu_output_fields)
 set_tests_properties(vtu_output_fields PROPERTIES LABELS system)
+
+# Every linear solver gives the same answer on the clamped plate.
+foreach(method cholmod umfpack amesos-klu cg-amg)
+  coshell_scene_test(linear_solver.${method}
+    plates/clamped_square_pressure.prm
+    ARGS --set "Mesh/Refinement levels=3" --set ${no_vtu}
+         --set "Linear solver/Method=${method}"
+         --value center_deflection 0.1266480898 1e-8)
+endforeach()

@@ -1,3 +1,4 @@
+#include <coshell/solvers/cholmod_solver.h>
 #include <coshell/solvers/linear_solver.h>
 
 #include <deal.II/base/index_set.h>
@@ -19,6 +20,8 @@ namespace coshell::solvers
   struct LinearSolver::Backend
   {
     SparseDirectUMFPACK                                umfpack;
+    CholmodSolver                                      cholmod;
+    bool                                               using_cholmod = false;
     TrilinosWrappers::SparseMatrix                     trilinos_matrix;
     SolverControl                                      direct_control;
     std::unique_ptr<TrilinosWrappers::SolverDirect>    trilinos_direct;
@@ -42,8 +45,13 @@ namespace coshell::solvers
   void LinearSolver::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Linear solver");
-    prm.declare_entry("Method", "umfpack",
-                      Patterns::Selection("umfpack|amesos-klu|cg-amg"),
+    prm.declare_entry("Method", "cholmod",
+                      Patterns::Selection("cholmod|umfpack|amesos-klu|cg-amg"),
+                      "cholmod: SuiteSparse supernodal Cholesky, analysed "
+                      "once per sparsity pattern (symmetric positive "
+                      "definite systems; non-symmetric ones, such as the "
+                      "consistent co-rotational tangent, fall back to "
+                      "umfpack); "
                       "umfpack: deal.II's sparse direct LU (SuiteSparse); "
                       "amesos-klu: Trilinos Amesos KLU direct solver; "
                       "cg-amg: conjugate gradients with Trilinos ML algebraic "
@@ -64,9 +72,16 @@ namespace coshell::solvers
     prm.leave_subsection();
   }
 
-  void LinearSolver::factorize(const SparseMatrix<double> &matrix)
+  void LinearSolver::factorize(const SparseMatrix<double> &matrix,
+                               bool                        symmetric)
   {
-    if (method_ == "umfpack")
+    backend_->using_cholmod = method_ == "cholmod" && symmetric;
+    if (backend_->using_cholmod)
+    {
+      backend_->cholmod.factorize(matrix);
+      return;
+    }
+    if (method_ == "umfpack" || method_ == "cholmod")
     {
       backend_->umfpack.initialize(matrix);
       return;
@@ -93,7 +108,13 @@ namespace coshell::solvers
 
   void LinearSolver::solve(Vector<double> &x, const Vector<double> &b)
   {
-    if (method_ == "umfpack")
+    if (backend_->using_cholmod)
+    {
+      backend_->cholmod.solve(x, b);
+      last_iterations_ = 1;
+      return;
+    }
+    if (method_ == "umfpack" || method_ == "cholmod")
     {
       x = b;
       backend_->umfpack.solve(x);

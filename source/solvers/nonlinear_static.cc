@@ -215,7 +215,7 @@ namespace coshell::solvers
                             std::to_string(max_iterations_) +
                             " iterations (relative residual " +
                             number(relative_residual) + ")");
-      c.linear_solver.factorize(c.tangent);
+      c.linear_solver.factorize(c.tangent, false);
       Vector<double> correction = c.solve(c.residual);
       const double   energy     = std::abs(correction * c.residual);
       if (iteration == 0)
@@ -292,7 +292,7 @@ namespace coshell::solvers
   {
     Vector<double> load = c.load_direction();
     c.assemble(c.state, c.load_factor, true);
-    c.linear_solver.factorize(c.tangent);
+    c.linear_solver.factorize(c.tangent, false);
     const Vector<double> tangent_direction = c.solve(load);
     const double         sign =
         c.previous_step.size() > 0 && tangent_direction * c.previous_step < 0
@@ -321,7 +321,7 @@ namespace coshell::solvers
       if (iteration == max_iterations_)
         throw NewtonFailure("arc-length corrector did not converge in " +
                             std::to_string(max_iterations_) + " iterations");
-      c.linear_solver.factorize(c.tangent);
+      c.linear_solver.factorize(c.tangent, false);
       const Vector<double> from_residual = c.solve(c.residual);
       const Vector<double> from_load     = c.solve(load);
       Vector<double>       base          = step;
@@ -358,7 +358,7 @@ namespace coshell::solvers
   void NonlinearStatic::arc_length(Context &c) const
   {
     c.assemble(c.state, 0, true);
-    c.linear_solver.factorize(c.tangent);
+    c.linear_solver.factorize(c.tangent, false);
     const double first_arc =
         c.solve(c.load_direction()).l2_norm() / load_steps_;
     double       arc  = first_arc;

@@ -43,17 +43,20 @@ namespace coshell::element
                                      const MembraneDisplacements &dofs);
 
   /// The "optimal" ANDES membrane triangle with corner drilling freedoms
-  /// (Felippa 2003, CMAME 192:2125), on the 9 membrane DOFs above:
+  /// (Felippa 2003, CMAME 192:2125), on the 9 membrane DOFs above, theta_z
+  /// counter-clockwise about the plane's normal:
   ///   K = K_b + K_h.
   /// K_b = L C L^T / A is the basic stiffness: L (9x3) lumps a constant
-  /// stress into nodal forces and moments through edge displacements that
-  /// are quadratic in the drilling rotations (Allman-type, alpha_b = 3/2).
-  /// K_h = 3/4 beta_0 T^T K_theta T acts on the hierarchical rotations
-  /// theta_i - theta_0 (theta_0: the constant in-plane rotation of the
-  /// linear part) through corner natural strains with beta_1..9 =
-  /// (1, 2, 1, 0, 1, -1, -1, -1, -2), beta_0 = max((1 - 4 nu^2)/2, 0.01).
-  /// Rank 6 (3 rigid modes), passes the patch test, exact for in-plane
-  /// pure bending of rectangular two-triangle units. Either vertex order.
+  /// stress resultant into nodal forces and moments through edge
+  /// displacements that are linear plus an Allman-type bubble in the
+  /// drilling rotations (alpha_b = 3/2). K_h = 9/4 beta_0 T^T K_theta T acts
+  /// on the hierarchical rotations theta_i - theta_0 (theta_0: the rotation
+  /// of the linear part) through corner natural strains (2A/3) beta_k / l^2
+  /// with beta_1..9 = (1, 2, 1, 0, 1, -1, -1, -1, -2) and
+  /// beta_0 = max((1 - 4 nu^2)/2, 0.01). Rank 6 (the 3 rigid modes cost
+  /// nothing), passes the patch test, and a rectangle of two triangles
+  /// stores the exact energy in in-plane pure bending for any aspect ratio.
+  /// Either vertex order. Throws DegenerateTriangle like the CST.
   FullMatrix<double> andes_stiffness(const PlanarTriangle &triangle,
                                      const ShellMaterial  &material);
 

@@ -21,7 +21,9 @@ namespace coshell::solvers
     void        parse_parameters(dealii::ParameterHandler &prm);
 
     /// Factorizes (direct) or sets up the preconditioner (iterative).
-    void factorize(const dealii::SparseMatrix<double> &matrix);
+    /// 'symmetric' = false makes cholmod fall back to umfpack.
+    void factorize(const dealii::SparseMatrix<double> &matrix,
+                   bool                                symmetric = true);
     /// Solves with the last factorized matrix. Throws std::runtime_error if
     /// an iterative method does not converge.
     void solve(dealii::Vector<double> &x, const dealii::Vector<double> &b);
@@ -31,7 +33,7 @@ namespace coshell::solvers
     unsigned int last_iterations() const;
 
   private:
-    std::string  method_          = "umfpack";
+    std::string  method_ = "cholmod";
     double       tolerance_       = 1e-10;
     unsigned int max_iterations_  = 10000;
     unsigned int last_iterations_ = 0;
