@@ -95,3 +95,10 @@ coshell_bad_input_test(newton_failure "load step from load factor 0 to 1 failed 
   ${COSHELL_PRM}/benchmarks/cantilever_end_moment.prm
   --set "Quantities of interest/Reference curves="
   --set "Nonlinear solver/Load steps=1" --set "Nonlinear solver/Maximum step cuts=0")
+
+# The paper's clamped square plate with the membrane on, past w/h = 5
+# (w = 0.5): the run must reach the full load with the deflection beyond
+# five thicknesses; the path is plotted in doc/validation.md.
+coshell_nonlinear_test(corotational.clamped_square_plate_large_deflection
+  benchmarks/clamped_square_plate_large_deflection.prm
+  ARGS --minimum center_deflection 1 0.5)

@@ -11,6 +11,8 @@ Newton history against references given here.
      [--limit-point]           the load factor rises, then falls (a limit point
                                was passed) while the QOI of --monotone grows
      [--monotone QOI]
+     [--minimum QOI LOAD_FACTOR VALUE]  the QOI at that load factor is at
+                               least VALUE
 """
 import argparse
 import csv
@@ -74,6 +76,7 @@ def main():
     parser.add_argument("--max-iterations", type=int)
     parser.add_argument("--limit-point", action="store_true")
     parser.add_argument("--monotone")
+    parser.add_argument("--minimum", nargs=3, action="append", default=[])
     args = parser.parse_args()
 
     if os.path.isdir(args.output):
@@ -88,7 +91,14 @@ def main():
     history = read_csv(os.path.join(args.output, "newton_history.csv"))
 
     failures = check_points(rows, args.point, args.rtol, args.length)
-    checks = len(args.point)
+    checks = len(args.point) + len(args.minimum)
+    for name, factor, minimum in args.minimum:
+        row = min(rows, key=lambda r: abs(float(r["load_factor"]) - float(factor)))
+        value = float(row[name])
+        print(f"{name} at load factor {row['load_factor']}: {value:.6g} "
+              f"(required >= {minimum})")
+        if abs(float(row["load_factor"]) - float(factor)) > 1e-9 or value < float(minimum):
+            failures.append(f"{name} below {minimum}")
     if args.min_order is not None:
         checks += 1
         orders = convergence_orders(history)
