@@ -7,6 +7,7 @@ packages=(
   cmake g++ make git pkg-config
   libdeal.ii-dev        # deal.II 9.4 with Trilinos, METIS, HDF5, SuiteSparse
   libgtest-dev          # unit tests
+  libbenchmark-dev      # speed benchmarks (Google Benchmark)
   gmsh                  # meshes .geo files
   python3 python3-matplotlib  # test checkers and plots (/usr/bin/python3)
   libopenblas0-pthread  # faster BLAS than the reference one for UMFPACK

@@ -1,0 +1,113 @@
+// Google Benchmark timings of the element kernels and of global assembly
+// (not tests: speed is measured here, never asserted). Run
+//   build/benchmarks/coshell_element_benchmarks --benchmark_format=csv
+// or through doc/scripts/performance_tables.py, which records the machine.
+
+#include <coshell/element/corotational.h>
+#include <coshell/element/shell_element.h>
+#include <coshell/mesh/mesh.h>
+#include <coshell/model/corotational_model.h>
+#include <coshell/model/shell_model.h>
+#include <coshell/model/shell_state.h>
+
+#include <deal.II/base/multithread_info.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/sparsity_pattern.h>
+
+#include <benchmark/benchmark.h>
+
+using namespace coshell;
+
+namespace
+{
+  element::ShellMaterial plate_material()
+  {
+    element::ShellMaterial material;
+    material.youngs_modulus = 1.092e6;
+    material.poisson_ratio  = 0.3;
+    material.thickness      = 0.1;
+    return material;
+  }
+
+  const element::SpatialTriangle triangle = {
+      {dealii::Point<3>(0.1, 0.2, 0.3), dealii::Point<3>(1.2, -0.3, 0.7),
+       dealii::Point<3>(0.4, 0.9, -0.2)}};
+
+  element::ShellElementOptions options_for(int64_t bending)
+  {
+    element::ShellElementOptions options;
+    options.bending = bending == 0 ? element::BendingElement::dkt
+                                   : element::BendingElement::przemieniecki;
+    return options;
+  }
+
+  /// Linear flat-shell stiffness, 18x18 in global axes (arg: 0 DKT, 1
+  /// Przemieniecki).
+  void linear_shell_kernel(benchmark::State &state)
+  {
+    const auto options = options_for(state.range(0));
+    for (auto _ : state)
+      benchmark::DoNotOptimize(
+          element::shell_stiffness(triangle, plate_material(), options));
+  }
+  BENCHMARK(linear_shell_kernel)->Arg(0)->Arg(1);
+
+  /// Co-rotational force with the consistent tangent, the paper tangent,
+  /// or no tangent (arg 0, 1, 2), at a deformed state.
+  void corotational_kernel(benchmark::State &state)
+  {
+    const element::CorotationalShell shell(triangle, plate_material(),
+                                           options_for(0));
+    element::SpatialTriangle         current = triangle;
+    current[1][2] += 0.2;
+    const element::NodalRotations rotations = {
+        {element::rotation_exp(dealii::Tensor<1, 3>({0.3, 0.1, 0.0})),
+         element::rotation_exp(dealii::Tensor<1, 3>({0.0, 0.4, 0.1})),
+         element::rotation_exp(dealii::Tensor<1, 3>({0.2, 0.0, 0.3}))}};
+    const auto                  type = state.range(0) == 1
+                                           ? element::CorotationalTangent::paper
+                                           : element::CorotationalTangent::consistent;
+    element::ShellDisplacements force;
+    dealii::FullMatrix<double>  tangent(18, 18);
+    for (auto _ : state)
+    {
+      shell.internal_force(current, rotations, type, force,
+                           state.range(0) == 2 ? nullptr : &tangent);
+      benchmark::DoNotOptimize(force);
+    }
+  }
+  BENCHMARK(corotational_kernel)->Arg(0)->Arg(1)->Arg(2);
+
+  /// Whole linear assembly (kernels + scatter) of the clamped plate, per
+  /// element, with 1 or 2 threads (arg).
+  void linear_assembly(benchmark::State &state)
+  {
+    dealii::MultithreadInfo::set_thread_limit(state.range(0));
+    mesh::Surface surface;
+    mesh::make_rectangle(surface, 10, 10, 64, 64,
+                         mesh::TrianglePattern::crossed);
+    model::ElementParameters parameters;
+    parameters.material = plate_material();
+    const model::ShellModel           model(surface, parameters,
+                                            dealii::Tensor<1, 3>({0, 0, 1}));
+    dealii::AffineConstraints<double> constraints;
+    constraints.close();
+    dealii::SparsityPattern pattern;
+    model.make_sparsity(constraints, pattern);
+    dealii::SparseMatrix<double> matrix(pattern);
+    for (auto _ : state)
+      model.assemble_stiffness(constraints, matrix);
+    state.counters["us_per_element"] =
+        benchmark::Counter(surface.n_active_cells(),
+                           benchmark::Counter::kIsIterationInvariantRate |
+                               benchmark::Counter::kInvert);
+  }
+  BENCHMARK(linear_assembly)
+      ->Arg(1)
+      ->Arg(2)
+      ->Unit(benchmark::kMillisecond)
+      ->UseRealTime();
+} // namespace
+
+BENCHMARK_MAIN();
