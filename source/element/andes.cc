@@ -24,14 +24,14 @@ namespace coshell::element
 
     constexpr unsigned int membrane_dofs = 9;
 
-    // The optimal instance of the ANDES template (Felippa 2003, Sec. 5):
-    // exact in-plane pure bending of rectangular two-triangle units of any
-    // aspect ratio.
-    constexpr double basic_drilling_weight = 1.5; // alpha_b
+    // The optimal instance of the ANDES template (Felippa 2003, Sec. 5): a
+    // rectangle of two triangles stores the exact energy in in-plane pure
+    // bending, for any aspect ratio.
+    constexpr double                basic_drilling_weight = 1.5; // alpha_b
     constexpr std::array<double, 9> corner_strain_weights = {
         {1, 2, 1, 0, 1, -1, -1, -1, -2}}; // beta_1 .. beta_9
 
-    // beta_0 = (1 - 4 nu^2)/2 makes the units exact in bending; it vanishes
+    // beta_0 = (1 - 4 nu^2)/2 makes that hold for any nu; it vanishes
     // at nu = 1/2, so it is floored to keep K_h (and the rank) alive.
     double higher_order_weight(double poisson_ratio)
     {
@@ -46,6 +46,12 @@ namespace coshell::element
     // c = 9/4 (test Andes.PureBendingOfRectangularUnitsIsExact, which also
     // checks nu = 0.3, where beta_0 = 0.32).
     constexpr double higher_order_normalisation = 9.0 / 4.0;
+
+    FullMatrix<double> membrane_material(const ShellMaterial &material)
+    {
+      return plane_stress_matrix(material.membrane_rigidity(),
+                                 material.poisson_ratio);
+    }
 
     constexpr unsigned int dof(unsigned int vertex, unsigned int component)
     {
@@ -125,8 +131,8 @@ namespace coshell::element
                                 const MembraneDisplacements &dofs)
     {
       Vector<double> strain(3);
-      lumping_matrix(triangle).Tvmult(
-          strain, Vector<double>(dofs.begin(), dofs.end()));
+      lumping_matrix(triangle).Tvmult(strain,
+                                      Vector<double>(dofs.begin(), dofs.end()));
       strain /= signed_area(triangle);
       return strain;
     }
@@ -136,10 +142,8 @@ namespace coshell::element
     {
       const FullMatrix<double> lumping = lumping_matrix(triangle);
       FullMatrix<double>       stiffness(membrane_dofs, membrane_dofs);
-      stiffness.triple_product(
-          plane_stress_matrix(material.membrane_rigidity(),
-                              material.poisson_ratio),
-          lumping, lumping, false, true, 1.0 / signed_area(triangle));
+      stiffness.triple_product(membrane_material(material), lumping, lumping,
+                               false, true, 1.0 / signed_area(triangle));
       return stiffness;
     }
 
@@ -148,17 +152,20 @@ namespace coshell::element
     // (v_i + v_j) dy (Green) is the rotation of the linear displacements.
     FullMatrix<double> hierarchical_rotations(const PlanarTriangle &triangle)
     {
-      const double       scale = 1.0 / (4.0 * signed_area(triangle));
+      const double   scale = 1.0 / (4.0 * signed_area(triangle));
+      Vector<double> mean_rotation(membrane_dofs);
+      for (unsigned int e = 0; e < 3; ++e)
+        for (const unsigned int v : {e, next(e)})
+        {
+          mean_rotation(dof(v, 0)) += scale * edge(triangle, e)[0];
+          mean_rotation(dof(v, 1)) += scale * edge(triangle, e)[1];
+        }
       FullMatrix<double> rotations(3, membrane_dofs);
       for (unsigned int i = 0; i < 3; ++i)
       {
-        rotations(i, dof(i, 2)) = 1.0;
-        for (unsigned int e = 0; e < 3; ++e)
-          for (const unsigned int v : {e, next(e)})
-          {
-            rotations(i, dof(v, 0)) -= scale * edge(triangle, e)[0];
-            rotations(i, dof(v, 1)) -= scale * edge(triangle, e)[1];
-          }
+        for (unsigned int a = 0; a < membrane_dofs; ++a)
+          rotations(i, a) = -mean_rotation(a);
+        rotations(i, dof(i, 2)) += 1.0;
       }
       return rotations;
     }
@@ -209,10 +216,8 @@ namespace coshell::element
     {
       const FullMatrix<double> to_cartesian = natural_to_cartesian(triangle);
       FullMatrix<double>       natural_rigidity(3, 3);
-      natural_rigidity.triple_product(
-          plane_stress_matrix(material.membrane_rigidity(),
-                              material.poisson_ratio),
-          to_cartesian, to_cartesian, true, false);
+      natural_rigidity.triple_product(membrane_material(material), to_cartesian,
+                                      to_cartesian, true, false);
 
       std::array<FullMatrix<double>, 3> corners;
       for (unsigned int c = 0; c < 3; ++c)
@@ -245,8 +250,8 @@ namespace coshell::element
   FullMatrix<double> andes_stiffness(const PlanarTriangle &triangle,
                                      const ShellMaterial  &material)
   {
-    const auto           order = counter_clockwise_order(triangle);
-    const PlanarTriangle ccw   = reordered(triangle, order);
+    const auto           order         = counter_clockwise_order(triangle);
+    const PlanarTriangle ccw           = reordered(triangle, order);
     FullMatrix<double>   ccw_stiffness = basic_stiffness(ccw, material);
     ccw_stiffness.add(1.0, higher_order_stiffness(ccw, material));
 
@@ -268,8 +273,8 @@ namespace coshell::element
       ccw_dofs[a] = dofs[original_dof(a, order)];
 
     Vector<double> forces(3);
-    plane_stress_matrix(material.membrane_rigidity(), material.poisson_ratio)
-        .vmult(forces, basic_strain(reordered(triangle, order), ccw_dofs));
+    membrane_material(material).vmult(
+        forces, basic_strain(reordered(triangle, order), ccw_dofs));
     return {{forces(0), forces(1), forces(2)}};
   }
 } // namespace coshell::element

@@ -72,7 +72,7 @@ namespace coshell::model
     else
       options.membrane = membrane == "cst" ? element::MembraneElement::cst
                                            : element::MembraneElement::andes;
-    const std::string bending  = prm.get("Bending element");
+    const std::string bending = prm.get("Bending element");
     if (bending == "off")
       options.bending = std::nullopt;
     else
@@ -98,7 +98,7 @@ namespace coshell::model
     if (options.membrane)
       membrane =
           *options.membrane == element::MembraneElement::cst ? "cst" : "andes";
-    std::string       bending  = "nobending";
+    std::string bending = "nobending";
     if (options.bending)
       bending = *options.bending == element::BendingElement::dkt
                     ? "dkt"

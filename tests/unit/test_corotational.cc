@@ -670,10 +670,10 @@ TEST(CorotationalShell, AndesMembraneKeepsTheKernelConsistent)
   const CorotationalShell element(initial_triangle, thick_material(), options);
 
   const State deformed = random_deformed_state(initial_triangle, 2);
-  EXPECT_LT(relative_difference(
-                consistent_tangent(element, deformed),
-                finite_difference_tangent(element, deformed, 1e-6)),
-            1e-6);
+  EXPECT_LT(
+      relative_difference(consistent_tangent(element, deformed),
+                          finite_difference_tangent(element, deformed, 1e-6)),
+      1e-6);
 
   const State initial = initial_state(initial_triangle);
   EXPECT_LT(relative_difference(
