@@ -328,4 +328,30 @@ namespace coshell::element::testing
     difference -= b;
     return difference.linfty_norm();
   }
+  /// Membrane constant-strain patch test on the distorted patch: the
+  /// interior node must reproduce the linear field (u, v and theta_z = its
+  /// rotation) and every element the exact constant membrane forces.
+  template<typename Stiffness, typename Forces>
+  void expect_membrane_patch_test(const Stiffness &stiffness,
+                                  const Forces    &forces_of)
+  {
+    const Patch              patch    = distorted_patch();
+    const ShellMaterial      material = test_material();
+    const LinearInPlaneField field;
+    const Vector<double>     exact    = patch_values(patch, field);
+    const Vector<double>     solution = solve_patch(
+            patch, 3,
+            [&](unsigned int e) { return stiffness(patch.planar(e), material); },
+            exact);
+    EXPECT_LT(max_difference(solution, exact), 1e-13);
+    const auto expected = field.forces(material);
+    for (unsigned int e = 0; e < patch.triangles.size(); ++e)
+    {
+      const auto forces = forces_of(patch.planar(e), material,
+                                    element_dofs<9>(patch, e, solution));
+      for (unsigned int c = 0; c < 3; ++c)
+        EXPECT_NEAR(forces[c], expected[c], 1e-10 * std::abs(expected[0]))
+            << "element " << e << ", component " << c;
+    }
+  }
 } // namespace coshell::element::testing

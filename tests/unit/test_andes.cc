@@ -278,27 +278,7 @@ TEST(Andes, MembraneForcesOfALinearFieldAreExact)
 // the interior node reproduces u, v and theta_z, every element the forces.
 TEST(Andes, PassesPatchTestOnDistortedPatch)
 {
-  const Patch              patch    = distorted_patch();
-  const ShellMaterial      material = test_material();
-  const LinearInPlaneField field;
-  const Vector<double>     exact = patch_values(patch, field);
-
-  const Vector<double> solution = solve_patch(
-      patch, 3,
-      [&](unsigned int e)
-      { return andes_stiffness(patch.planar(e), material); },
-      exact);
-  EXPECT_LT(max_difference(solution, exact), 1e-13);
-
-  const auto expected = field.forces(material);
-  for (unsigned int e = 0; e < patch.triangles.size(); ++e)
-  {
-    const auto forces = andes_membrane_forces(
-        patch.planar(e), material, element_dofs<9>(patch, e, solution));
-    for (unsigned int c = 0; c < 3; ++c)
-      EXPECT_NEAR(forces[c], expected[c], 1e-10 * std::abs(expected[0]))
-          << "element " << e << ", component " << c;
-  }
+  expect_membrane_patch_test(andes_stiffness, andes_membrane_forces);
 }
 
 // The defining property of the optimal element (Felippa 2003, Sec. 5):

@@ -95,7 +95,6 @@ namespace
     return state;
   }
 
-
   // The perturbation the element is differentiated for: x_i += du_i,
   // R_i <- exp(skew(dtheta_i)) R_i, DOF index 6 * vertex + component.
   State perturbed(State state, unsigned int dof, double step)

@@ -143,26 +143,5 @@ TEST(Cst, MembraneForcesOfALinearFieldAreExact)
 
 TEST(Cst, PassesPatchTestOnDistortedPatch)
 {
-  const Patch              patch    = distorted_patch();
-  const ShellMaterial      material = test_material();
-  const LinearInPlaneField field;
-
-  const Vector<double> exact = patch_values(patch, field);
-
-  const Vector<double> solution = solve_patch(
-      patch, 3,
-      [&](unsigned int e)
-      { return cst_with_drilling(patch.planar(e), material); },
-      exact);
-  EXPECT_LT(max_difference(solution, exact), 1e-13);
-
-  const auto expected = field.forces(material);
-  for (unsigned int e = 0; e < patch.triangles.size(); ++e)
-  {
-    const auto forces = cst_membrane_forces(
-        patch.planar(e), material, element_dofs<9>(patch, e, solution));
-    for (unsigned int c = 0; c < 3; ++c)
-      EXPECT_NEAR(forces[c], expected[c], 1e-10 * std::abs(expected[0]))
-          << "element " << e << ", component " << c;
-  }
+  expect_membrane_patch_test(cst_with_drilling, cst_membrane_forces);
 }
