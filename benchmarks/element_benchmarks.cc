@@ -34,16 +34,20 @@ namespace
       {dealii::Point<3>(0.1, 0.2, 0.3), dealii::Point<3>(1.2, -0.3, 0.7),
        dealii::Point<3>(0.4, 0.9, -0.2)}};
 
-  element::ShellElementOptions options_for(int64_t bending)
+  /// arg: 0 CST+DKT, 1 CST+Przemieniecki, 2 ANDES+DKT.
+  element::ShellElementOptions options_for(int64_t variant)
   {
     element::ShellElementOptions options;
-    options.bending = bending == 0 ? element::BendingElement::dkt
-                                   : element::BendingElement::przemieniecki;
+    if (variant == 2)
+      options.membrane = element::MembraneElement::andes;
+    const int64_t bending = variant == 1 ? 1 : 0;
+    options.bending       = bending == 0 ? element::BendingElement::dkt
+                                         : element::BendingElement::przemieniecki;
     return options;
   }
 
-  /// Linear flat-shell stiffness, 18x18 in global axes (arg: 0 DKT, 1
-  /// Przemieniecki).
+  /// Linear flat-shell stiffness, 18x18 in global axes (arg: see
+  /// options_for).
   void linear_shell_kernel(benchmark::State &state)
   {
     const auto options = options_for(state.range(0));
@@ -51,7 +55,7 @@ namespace
       benchmark::DoNotOptimize(
           element::shell_stiffness(triangle, plate_material(), options));
   }
-  BENCHMARK(linear_shell_kernel)->Arg(0)->Arg(1);
+  BENCHMARK(linear_shell_kernel)->Arg(0)->Arg(1)->Arg(2);
 
   /// Co-rotational force with the consistent tangent, the paper tangent,
   /// or no tangent (arg 0, 1, 2), at a deformed state.

@@ -3,7 +3,6 @@
 
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <iostream>
 
 #include "element_test_utilities.h"
@@ -490,27 +489,3 @@ TEST(AndesShell, UsesTheAndesMembraneWithoutDrillingPenalty)
                 1e-14 * std::abs(expected[0]));
 }
 
-// Timings only, no assertion on time.
-TEST(Andes, Timings)
-{
-  const ShellMaterial material = test_material();
-  const auto          time_per = [](const auto &work)
-  {
-    const unsigned int n     = 20000;
-    const auto         start = std::chrono::steady_clock::now();
-    for (unsigned int k = 0; k < n; ++k)
-      work();
-    const std::chrono::duration<double, std::micro> elapsed =
-        std::chrono::steady_clock::now() - start;
-    return elapsed.count() / n;
-  };
-  volatile double sink       = 0.0;
-  const double    andes_time = time_per(
-      [&] { sink = sink + andes_stiffness(generic_triangle, material)(0, 0); });
-  const double cst_time = time_per(
-      [&]
-      { sink = sink + cst_with_drilling(generic_triangle, material)(0, 0); });
-  std::cout << "membrane stiffness, microseconds per element: ANDES "
-            << andes_time << ", CST + drilling penalty " << cst_time
-            << std::endl;
-}

@@ -2,7 +2,6 @@
 
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <iostream>
 #include <random>
 
@@ -612,53 +611,6 @@ TEST(FollowerPressure, TotalForceAndLoadStiffness)
   EXPECT_LT(error, 1e-7 * stiffness.frobenius_norm());
 }
 
-// Timings only, no assertion on time.
-TEST(CorotationalShell, Timings)
-{
-  const CorotationalShell element(initial_triangle, test_material(),
-                                  with_bending(BendingElement::dkt));
-  const State             state = random_deformed_state(initial_triangle, 8);
-  const auto              time_per_call = [](const auto &work)
-  {
-    const unsigned int n     = 2000;
-    const auto         start = std::chrono::steady_clock::now();
-    for (unsigned int k = 0; k < n; ++k)
-      work();
-    const std::chrono::duration<double, std::micro> elapsed =
-        std::chrono::steady_clock::now() - start;
-    return elapsed.count() / n;
-  };
-  volatile double    sink = 0.0;
-  ShellDisplacements f;
-  FullMatrix<double> tangent;
-  const double       energy_time = time_per_call(
-      [&] { sink = sink + element.energy(state.x, state.rotations); });
-  const double force_time = time_per_call(
-      [&]
-      {
-        element.internal_force(state.x, state.rotations,
-                               CorotationalTangent::consistent, f, nullptr);
-        sink = sink + f[0];
-      });
-  const double consistent_time = time_per_call(
-      [&]
-      {
-        element.internal_force(state.x, state.rotations,
-                               CorotationalTangent::consistent, f, &tangent);
-        sink = sink + tangent(0, 0);
-      });
-  const double paper_time = time_per_call(
-      [&]
-      {
-        element.internal_force(state.x, state.rotations,
-                               CorotationalTangent::paper, f, &tangent);
-        sink = sink + tangent(0, 0);
-      });
-  std::cout << "co-rotational DKT shell, microseconds per element: energy "
-            << energy_time << ", force " << force_time
-            << ", force + consistent tangent " << consistent_time
-            << ", force + paper tangent " << paper_time << std::endl;
-}
 
 // K_l comes from shell_stiffness_local, so the ANDES membrane (genuine
 // drilling stiffness, no penalty) needs nothing of its own here.
