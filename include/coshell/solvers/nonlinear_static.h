@@ -73,10 +73,10 @@ namespace coshell::solvers
     unsigned int load_steps_           = 10;
     unsigned int max_step_cuts_        = 12;
     unsigned int max_iterations_       = 30;
-    double       residual_tolerance_   = 1e-8;
+    double       residual_tolerance_   = 1e-7;
     double       energy_tolerance_     = 1e-16;
     double       increment_tolerance_  = 1e-8;
-    bool         line_search_          = true;
+    bool         line_search_          = false;
     unsigned int max_arc_length_steps_ = 200;
     double       max_load_factor_      = 1;
 
