@@ -2,8 +2,7 @@
 // and, for refinement studies, convergence.csv.
 
 #include <coshell/driver/scene.h>
-
-#include <deal.II/base/mpi.h>
+#include <coshell/solvers/parallel_environment.h>
 
 #include <cstring>
 #include <iostream>
@@ -67,8 +66,10 @@ namespace
 
 int main(int argc, char **argv)
 {
-  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  CommandLine                              line;
+  // Serial runs start MPI lazily (see ensure_mpi_initialized).
+  if (coshell::solvers::launched_by_mpi_launcher())
+    coshell::solvers::ensure_mpi_initialized();
+  CommandLine line;
   try
   {
     line = parse_command_line(argc, argv);

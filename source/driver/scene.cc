@@ -5,6 +5,7 @@
 #include <coshell/model/shell_model.h>
 #include <coshell/model/shell_state.h>
 #include <coshell/solvers/linear_static.h>
+#include <coshell/solvers/parallel_environment.h>
 
 #include <chrono>
 #include <cstdlib>
@@ -109,6 +110,7 @@ namespace coshell::driver
     solvers::LinearSolver::declare_parameters(prm);
     solvers::NonlinearStatic::declare_parameters(prm);
     io::VtuOutput::declare_parameters(prm);
+    solvers::ThreadSettings::declare_parameters(prm);
   }
 
   void Scene::parse_parameters(ParameterHandler  &prm,
@@ -124,6 +126,7 @@ namespace coshell::driver
     linear_solver_.parse_parameters(prm);
     nonlinear_.parse_parameters(prm);
     output_.parse_parameters(prm);
+    solvers::ThreadSettings().parse_parameters(prm);
   }
 
   const io::VtuOutput &Scene::output() const
@@ -183,9 +186,13 @@ namespace coshell::driver
     analysis.assemble(loads_, log);
     result.wall_time_s.assemble = seconds_since(phase);
 
-    phase                         = std::chrono::steady_clock::now();
-    const Vector<double> solution = analysis.solve(linear_solver_);
-    result.wall_time_s.solve      = seconds_since(phase);
+    phase                           = std::chrono::steady_clock::now();
+    const Vector<double> solution   = analysis.solve(linear_solver_);
+    result.wall_time_s.solve        = seconds_since(phase);
+    result.linear_solver_iterations = linear_solver_.last_iterations();
+    if (linear_solver_.last_iterations() > 1)
+      log << "  " << linear_solver_.method() << ": "
+          << linear_solver_.last_iterations() << " iterations\n";
 
     phase      = std::chrono::steady_clock::now();
     result.qoi = quantities_.evaluate(model, solution);
@@ -327,6 +334,7 @@ namespace coshell::driver
     summary["formulation"]   = element_.formulation_name();
     summary["element"]       = element_.element_name();
     summary["linear_solver"] = linear_solver_.method();
+    summary["threads"]       = solvers::ThreadSettings::n_threads();
     if (study)
     {
       summary["levels"] = level_summaries;

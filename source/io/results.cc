@@ -18,18 +18,19 @@ namespace coshell::io
   Json LevelResult::to_json() const
   {
     Json json;
-    json["refinement_level"] = level;
-    json["h"]                = h;
-    json["n_cells"]          = n_cells;
-    json["n_vertices"]       = n_vertices;
-    json["n_dofs"]           = n_dofs;
-    json["n_inactive_dofs"]  = n_inactive_dofs;
-    Json &times              = json["wall_time_s"];
-    times["setup"]           = wall_time_s.setup;
-    times["assemble"]        = wall_time_s.assemble;
-    times["solve"]           = wall_time_s.solve;
-    times["output"]          = wall_time_s.output;
-    times["total"]           = wall_time_s.total;
+    json["refinement_level"]         = level;
+    json["h"]                        = h;
+    json["n_cells"]                  = n_cells;
+    json["n_vertices"]               = n_vertices;
+    json["n_dofs"]                   = n_dofs;
+    json["n_inactive_dofs"]          = n_inactive_dofs;
+    json["linear_solver_iterations"] = linear_solver_iterations;
+    Json &times                      = json["wall_time_s"];
+    times["setup"]                   = wall_time_s.setup;
+    times["assemble"]                = wall_time_s.assemble;
+    times["solve"]                   = wall_time_s.solve;
+    times["output"]                  = wall_time_s.output;
+    times["total"]                   = wall_time_s.total;
     if (load_steps > 0)
     {
       json["load_steps"]        = load_steps;

@@ -215,14 +215,14 @@ namespace coshell::model
     point_conditions_.clear();
     for (const auto &entry : Utilities::split_string_list(points, ';'))
     {
-      const auto colon = entry.find(':');
+      const auto         colon = entry.find(':');
       std::istringstream where(entry.substr(0, colon));
       Point<3>           point;
       if (colon == std::string::npos ||
           !(where >> point[0] >> point[1] >> point[2]))
         throw std::invalid_argument("Boundary conditions/Point conditions, "
-                                    "entry '" + entry +
-                                    "' is not 'x y z : condition'");
+                                    "entry '" +
+                                    entry + "' is not 'x y z : condition'");
       point_conditions_.emplace_back(
           point, parse_boundary_condition(entry.substr(colon + 1)));
     }

@@ -1,5 +1,6 @@
 #include <coshell/solvers/cholmod_solver.h>
 #include <coshell/solvers/linear_solver.h>
+#include <coshell/solvers/parallel_environment.h>
 
 #include <deal.II/base/index_set.h>
 #include <deal.II/lac/solver_cg.h>
@@ -10,6 +11,8 @@
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
+#include <Teuchos_ParameterList.hpp>
+
 #include <stdexcept>
 
 namespace coshell::solvers
@@ -19,14 +22,18 @@ namespace coshell::solvers
   /// Whatever each method keeps between factorize() and solve().
   struct LinearSolver::Backend
   {
-    SparseDirectUMFPACK                                umfpack;
-    CholmodSolver                                      cholmod;
-    bool                                               using_cholmod = false;
-    TrilinosWrappers::SparseMatrix                     trilinos_matrix;
+    SparseDirectUMFPACK umfpack;
+    CholmodSolver       cholmod;
+    bool                using_cholmod = false;
+    /// Created on first use: Trilinos objects need MPI running.
+    std::unique_ptr<TrilinosWrappers::SparseMatrix>    trilinos_matrix;
     SolverControl                                      direct_control;
     std::unique_ptr<TrilinosWrappers::SolverDirect>    trilinos_direct;
     std::unique_ptr<TrilinosWrappers::PreconditionAMG> amg;
     IndexSet                                           all_rows;
+    /// Near-null space, mode after mode (ML reads it during set-up).
+    std::vector<double> null_space_values;
+    unsigned int        n_null_space_modes = 0;
 
     TrilinosWrappers::MPI::Vector to_trilinos(const Vector<double> &v) const
     {
@@ -55,11 +62,28 @@ namespace coshell::solvers
                       "umfpack: deal.II's sparse direct LU (SuiteSparse); "
                       "amesos-klu: Trilinos Amesos KLU direct solver; "
                       "cg-amg: conjugate gradients with Trilinos ML algebraic "
-                      "multigrid (slow on thin shells unless tuned).");
+                      "multigrid (see the AMG entries; slow on thin shells "
+                      "without the rigid-body near-null space).");
     prm.declare_entry("Tolerance", "1e-10", Patterns::Double(0),
                       "Relative residual tolerance of iterative methods.");
     prm.declare_entry("Maximum iterations", "10000", Patterns::Integer(1),
                       "Iteration limit of iterative methods.");
+    prm.declare_entry("AMG near-null space", "rigid body",
+                      Patterns::Selection("rigid body|none"),
+                      "rigid body: give ML the six rigid-body motions "
+                      "(translations and rotations, with the rotation DoFs) "
+                      "as the near-null space, 6 DoFs per node; none: ML's "
+                      "default (one constant per DoF), which ignores the "
+                      "coupling of translations and rotations.");
+    prm.declare_entry(
+        "AMG smoother", "Chebyshev",
+        Patterns::Selection("Chebyshev|symmetric Gauss-Seidel|ILU"),
+        "ML smoother type.");
+    prm.declare_entry("AMG smoother sweeps", "2", Patterns::Integer(1),
+                      "Smoothing sweeps per level.");
+    prm.declare_entry("AMG aggregation threshold", "1e-4", Patterns::Double(0),
+                      "ML aggregation threshold (drop tolerance of the "
+                      "strength-of-connection graph).");
     prm.leave_subsection();
   }
 
@@ -69,6 +93,11 @@ namespace coshell::solvers
     method_         = prm.get("Method");
     tolerance_      = prm.get_double("Tolerance");
     max_iterations_ = prm.get_integer("Maximum iterations");
+    rigid_body_near_null_space_ =
+        prm.get("AMG near-null space") == "rigid body";
+    amg_smoother_              = prm.get("AMG smoother");
+    amg_smoother_sweeps_       = prm.get_integer("AMG smoother sweeps");
+    amg_aggregation_threshold_ = prm.get_double("AMG aggregation threshold");
     prm.leave_subsection();
   }
 
@@ -86,8 +115,11 @@ namespace coshell::solvers
       backend_->umfpack.initialize(matrix);
       return;
     }
+    ensure_mpi_initialized();
     backend_->all_rows = complete_index_set(matrix.m());
-    backend_->trilinos_matrix.reinit(matrix);
+    backend_->trilinos_matrix =
+        std::make_unique<TrilinosWrappers::SparseMatrix>();
+    backend_->trilinos_matrix->reinit(matrix);
     if (method_ == "amesos-klu")
     {
       backend_->trilinos_direct =
@@ -95,15 +127,50 @@ namespace coshell::solvers
               backend_->direct_control,
               TrilinosWrappers::SolverDirect::AdditionalData(false,
                                                              "Amesos_Klu"));
-      backend_->trilinos_direct->initialize(backend_->trilinos_matrix);
+      backend_->trilinos_direct->initialize(*backend_->trilinos_matrix);
     }
     else
+      initialize_amg();
+  }
+
+  void LinearSolver::initialize_amg()
+  {
+    TrilinosWrappers::PreconditionAMG::AdditionalData data;
+    data.elliptic              = true;
+    data.smoother_type         = amg_smoother_.c_str();
+    data.smoother_sweeps       = amg_smoother_sweeps_;
+    data.aggregation_threshold = amg_aggregation_threshold_;
+    Teuchos::ParameterList              parameters;
+    std::unique_ptr<Epetra_MultiVector> unused_constant_modes;
+    data.set_parameters(parameters, unused_constant_modes,
+                        *backend_->trilinos_matrix);
+    if (uses_near_null_space() && backend_->n_null_space_modes > 0)
     {
-      TrilinosWrappers::PreconditionAMG::AdditionalData data;
-      data.elliptic = true;
-      backend_->amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
-      backend_->amg->initialize(backend_->trilinos_matrix, data);
+      // Blocks of 6 consecutive DoFs per vertex (deal.II's numbering of a
+      // vertex-only FESystem), so ML aggregates nodes, not single DoFs.
+      parameters.set("PDE equations", 6);
+      parameters.set("null space: type", "pre-computed");
+      parameters.set("null space: dimension",
+                     static_cast<int>(backend_->n_null_space_modes));
+      parameters.set("null space: vectors", backend_->null_space_values.data());
     }
+    backend_->amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
+    backend_->amg->initialize(*backend_->trilinos_matrix, parameters);
+  }
+
+  bool LinearSolver::uses_near_null_space() const
+  {
+    return method_ == "cg-amg" && rigid_body_near_null_space_;
+  }
+
+  void
+  LinearSolver::set_near_null_space(const std::vector<Vector<double>> &modes)
+  {
+    backend_->n_null_space_modes = modes.size();
+    backend_->null_space_values.clear();
+    for (const auto &mode : modes)
+      backend_->null_space_values.insert(backend_->null_space_values.end(),
+                                         mode.begin(), mode.end());
   }
 
   void LinearSolver::solve(Vector<double> &x, const Vector<double> &b)
@@ -134,7 +201,7 @@ namespace coshell::solvers
       SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
       try
       {
-        cg.solve(backend_->trilinos_matrix, solution, rhs, *backend_->amg);
+        cg.solve(*backend_->trilinos_matrix, solution, rhs, *backend_->amg);
       }
       catch (const SolverControl::NoConvergence &failure)
       {

@@ -55,6 +55,11 @@ namespace coshell::solvers
   Vector<double> LinearStatic::solve(LinearSolver &solver) const
   {
     Vector<double> solution(model_.n_dofs());
+    if (solver.uses_near_null_space())
+    {
+      const auto modes = model::rigid_body_modes(model_);
+      solver.set_near_null_space({modes.begin(), modes.end()});
+    }
     solver.factorize(stiffness_);
     solver.solve(solution, load_);
     constraints_.distribute(solution);

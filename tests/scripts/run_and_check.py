@@ -13,6 +13,9 @@ that a test states its own independent reference.
                                      d = differences of successive values
                                      (needs no reference; halving h)
       [--max-rate RATE]
+      [--max-iterations N] [--min-iterations N]
+                                     bounds on linear_solver_iterations
+                                     (Krylov iterations; deterministic)
 """
 import argparse
 import csv
@@ -88,6 +91,17 @@ def check_self_order(output, minimum):
     return [] if order >= minimum else [f"{name}: order {order:.2f} < {minimum}"]
 
 
+def check_iterations(summary, low, high):
+    iterations = summary["linear_solver_iterations"]
+    print(f"linear solver iterations: {iterations} (bounds {low}, {high})")
+    failures = []
+    if low is not None and iterations < low:
+        failures.append(f"{iterations} iterations < {low}")
+    if high is not None and iterations > high:
+        failures.append(f"{iterations} iterations > {high}")
+    return failures
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--coshell", required=True)
@@ -101,6 +115,8 @@ def main():
     parser.add_argument("--min-rate", type=float)
     parser.add_argument("--max-rate", type=float)
     parser.add_argument("--min-self-order", type=float)
+    parser.add_argument("--min-iterations", type=int)
+    parser.add_argument("--max-iterations", type=int)
     args = parser.parse_args()
 
     summary = run_coshell(args)
@@ -110,7 +126,12 @@ def main():
         failures += check_rate(args.output, args.min_rate, args.max_rate)
     if args.min_self_order is not None:
         failures += check_self_order(args.output, args.min_self_order)
-    checks = (args.min_self_order is not None) + len(args.value) + len(args.error_above) + (args.min_rate is not None) + (args.max_rate is not None)
+    iteration_bounds = (args.min_iterations, args.max_iterations)
+    if iteration_bounds != (None, None):
+        failures += check_iterations(summary, *iteration_bounds)
+    checks = (len(args.value) + len(args.error_above) +
+              sum(x is not None for x in (args.min_self_order, args.min_rate, args.max_rate,
+                                          args.min_iterations, args.max_iterations)))
     print(f"{checks - len(failures)} passed, {len(failures)} failed")
     sys.exit(1 if failures else 0)
 

@@ -17,10 +17,12 @@ namespace coshell::io
   /// What one refinement level produced.
   struct LevelResult
   {
-    unsigned int                  level   = 0;
-    double                        h       = 0; ///< longest edge in the mesh
-    unsigned int                  n_cells = 0, n_vertices = 0;
-    unsigned long                 n_dofs = 0, n_inactive_dofs = 0;
+    unsigned int  level   = 0;
+    double        h       = 0; ///< longest edge in the mesh
+    unsigned int  n_cells = 0, n_vertices = 0;
+    unsigned long n_dofs = 0, n_inactive_dofs = 0;
+    /// Krylov iterations of the linear solve (1 for a direct solver).
+    unsigned long                 linear_solver_iterations = 0;
     PhaseTimes                    wall_time_s;
     unsigned int                  load_steps = 0, newton_iterations = 0;
     std::map<std::string, double> qoi, reference;

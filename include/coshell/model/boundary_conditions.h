@@ -51,7 +51,8 @@ namespace coshell::model
     const std::map<unsigned int, BoundaryCondition> &conditions() const;
 
   private:
-    std::map<unsigned int, BoundaryCondition>                  conditions_;
-    std::vector<std::pair<dealii::Point<3>, BoundaryCondition>> point_conditions_;
+    std::map<unsigned int, BoundaryCondition> conditions_;
+    std::vector<std::pair<dealii::Point<3>, BoundaryCondition>>
+        point_conditions_;
   };
 } // namespace coshell::model

@@ -6,6 +6,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace coshell::solvers
 {
@@ -28,17 +29,30 @@ namespace coshell::solvers
     /// an iterative method does not converge.
     void solve(dealii::Vector<double> &x, const dealii::Vector<double> &b);
 
+    /// True when the method can use the near-null space (cg-amg with
+    /// "AMG near-null space = rigid body").
+    bool uses_near_null_space() const;
+    /// Modes the AMG aggregates must represent (the rigid-body motions);
+    /// used by the next factorize().
+    void set_near_null_space(const std::vector<dealii::Vector<double>> &modes);
+
     const std::string &method() const;
     /// Iterations of the last solve (1 for a direct solver).
     unsigned int last_iterations() const;
 
   private:
-    std::string  method_ = "cholmod";
-    double       tolerance_       = 1e-10;
-    unsigned int max_iterations_  = 10000;
-    unsigned int last_iterations_ = 0;
+    std::string  method_                     = "cholmod";
+    double       tolerance_                  = 1e-10;
+    unsigned int max_iterations_             = 10000;
+    unsigned int last_iterations_            = 0;
+    bool         rigid_body_near_null_space_ = true;
+    std::string  amg_smoother_               = "Chebyshev";
+    unsigned int amg_smoother_sweeps_        = 2;
+    double       amg_aggregation_threshold_  = 1e-4;
 
     struct Backend;
     std::unique_ptr<Backend> backend_;
+
+    void initialize_amg();
   };
 } // namespace coshell::solvers
