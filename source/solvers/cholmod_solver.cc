@@ -1,5 +1,7 @@
 #include <coshell/solvers/cholmod_solver.h>
 
+#include "compressed_rows.h"
+
 #include <suitesparse/cholmod.h>
 
 #include <stdexcept>
@@ -12,13 +14,12 @@ namespace coshell::solvers
 
   struct CholmodSolver::Data
   {
-    cholmod_common   common;
-    cholmod_factor  *factor = nullptr;
-    std::vector<int> column_starts, row_indices;
-    /// The pattern the symbolic factorization was computed for.
-    std::vector<int>    analysed_starts, analysed_indices;
-    std::vector<double> values;
-    cholmod_sparse      matrix{};
+    cholmod_common  common;
+    cholmod_factor *factor = nullptr;
+    /// The matrix and the pattern the symbolic factorization was computed
+    /// for.
+    CompressedRows rows, analysed;
+    cholmod_sparse matrix{};
 
     Data()
     {
@@ -32,37 +33,22 @@ namespace coshell::solvers
       cholmod_finish(&common);
     }
 
-    /// Views deal.II's CSR storage as CHOLMOD's CSC: for a symmetric matrix
-    /// row r of A is column r of A. Only entries with row <= column are
-    /// read (stype = 1).
+    /// Views the row storage as CHOLMOD's column storage: for a symmetric
+    /// matrix row r of A is column r of A. Only entries with row <= column
+    /// are read (stype = 1).
     void copy(const SparseMatrix<double> &source)
     {
-      const SparsityPattern &sp = source.get_sparsity_pattern();
-      const unsigned int     n  = sp.n_rows();
-      column_starts.assign(n + 1, 0);
-      row_indices.resize(sp.n_nonzero_elements());
-      values.resize(sp.n_nonzero_elements());
-      unsigned int k = 0;
-      for (unsigned int r = 0; r < n; ++r)
-      {
-        column_starts[r] = k;
-        for (auto entry = source.begin(r); entry != source.end(r); ++entry, ++k)
-        {
-          row_indices[k] = entry->column();
-          values[k]      = entry->value();
-        }
-      }
-      column_starts[n] = k;
-      matrix.nrow = matrix.ncol = n;
-      matrix.nzmax              = k;
-      matrix.p                  = column_starts.data();
-      matrix.i                  = row_indices.data();
-      matrix.x                  = values.data();
+      rows.copy(source);
+      matrix.nrow = matrix.ncol = rows.n_rows();
+      matrix.nzmax              = rows.values.size();
+      matrix.p                  = rows.starts.data();
+      matrix.i                  = rows.indices.data();
+      matrix.x                  = rows.values.data();
       matrix.stype              = 1;
       matrix.itype              = CHOLMOD_INT;
       matrix.xtype              = CHOLMOD_REAL;
       matrix.dtype              = CHOLMOD_DOUBLE;
-      matrix.sorted             = false;
+      matrix.sorted             = true;
       matrix.packed             = true;
     }
   };
@@ -75,14 +61,12 @@ namespace coshell::solvers
   {
     Data &d = *data_;
     d.copy(matrix);
-    if (!d.factor || d.column_starts != d.analysed_starts ||
-        d.row_indices != d.analysed_indices)
+    if (!d.factor || !d.rows.same_pattern(d.analysed))
     {
       if (d.factor)
         cholmod_free_factor(&d.factor, &d.common);
-      d.factor           = cholmod_analyze(&d.matrix, &d.common);
-      d.analysed_starts  = d.column_starts;
-      d.analysed_indices = d.row_indices;
+      d.factor   = cholmod_analyze(&d.matrix, &d.common);
+      d.analysed = d.rows;
     }
     if (!d.factor || !cholmod_factorize(&d.matrix, d.factor, &d.common) ||
         d.common.status == CHOLMOD_NOT_POSDEF)

@@ -1,11 +1,11 @@
 #include <coshell/solvers/cholmod_solver.h>
 #include <coshell/solvers/linear_solver.h>
 #include <coshell/solvers/parallel_environment.h>
+#include <coshell/solvers/umfpack_solver.h>
 
 #include <deal.II/base/index_set.h>
 #include <deal.II/lac/solver_cg.h>
 #include <deal.II/lac/solver_control.h>
-#include <deal.II/lac/sparse_direct.h>
 #include <deal.II/lac/trilinos_precondition.h>
 #include <deal.II/lac/trilinos_solver.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
@@ -22,9 +22,9 @@ namespace coshell::solvers
   /// Whatever each method keeps between factorize() and solve().
   struct LinearSolver::Backend
   {
-    SparseDirectUMFPACK umfpack;
-    CholmodSolver       cholmod;
-    bool                using_cholmod = false;
+    UmfpackSolver umfpack;
+    CholmodSolver cholmod;
+    bool          using_cholmod = false;
     /// Created on first use: Trilinos objects need MPI running.
     std::unique_ptr<TrilinosWrappers::SparseMatrix>    trilinos_matrix;
     SolverControl                                      direct_control;
@@ -52,18 +52,20 @@ namespace coshell::solvers
   void LinearSolver::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Linear solver");
-    prm.declare_entry("Method", "cholmod",
-                      Patterns::Selection("cholmod|umfpack|amesos-klu|cg-amg"),
-                      "cholmod: SuiteSparse supernodal Cholesky, analysed "
-                      "once per sparsity pattern (symmetric positive "
-                      "definite systems; non-symmetric ones, such as the "
-                      "consistent co-rotational tangent, fall back to "
-                      "umfpack); "
-                      "umfpack: deal.II's sparse direct LU (SuiteSparse); "
-                      "amesos-klu: Trilinos Amesos KLU direct solver; "
-                      "cg-amg: conjugate gradients with Trilinos ML algebraic "
-                      "multigrid (see the AMG entries; slow on thin shells "
-                      "without the rigid-body near-null space).");
+    prm.declare_entry(
+        "Method", "cholmod",
+        Patterns::Selection("cholmod|umfpack|amesos-klu|cg-amg"),
+        "cholmod: SuiteSparse supernodal Cholesky, analysed "
+        "once per sparsity pattern (symmetric positive "
+        "definite systems; non-symmetric ones, such as the "
+        "consistent co-rotational tangent, fall back to "
+        "umfpack); "
+        "umfpack: SuiteSparse UMFPACK sparse LU, analysed once per "
+        "sparsity pattern; "
+        "amesos-klu: Trilinos Amesos KLU direct solver; "
+        "cg-amg: conjugate gradients with Trilinos ML algebraic "
+        "multigrid (see the AMG entries; slow on thin shells "
+        "without the rigid-body near-null space).");
     prm.declare_entry("Tolerance", "1e-10", Patterns::Double(0),
                       "Relative residual tolerance of iterative methods.");
     prm.declare_entry("Maximum iterations", "10000", Patterns::Integer(1),
@@ -112,7 +114,7 @@ namespace coshell::solvers
     }
     if (method_ == "umfpack" || method_ == "cholmod")
     {
-      backend_->umfpack.initialize(matrix);
+      backend_->umfpack.factorize(matrix);
       return;
     }
     ensure_mpi_initialized();
@@ -183,8 +185,7 @@ namespace coshell::solvers
     }
     if (method_ == "umfpack" || method_ == "cholmod")
     {
-      x = b;
-      backend_->umfpack.solve(x);
+      backend_->umfpack.solve(x, b);
       last_iterations_ = 1;
       return;
     }

@@ -413,7 +413,10 @@ namespace coshell::solvers
               history,
               tangent_,
               SparseMatrix<double>(sparsity),
-              Vector<double>(state.values().size())};
+              Vector<double>(state.values().size()),
+              0,
+              0.0,
+              Vector<double>()};
     history << "step,iteration,load_factor,relative_residual,"
                "correction_norm,relative_energy\n";
     state.save();

@@ -1,0 +1,43 @@
+#include "compressed_rows.h"
+
+namespace coshell::solvers
+{
+  void CompressedRows::copy(const dealii::SparseMatrix<double> &matrix)
+  {
+    const unsigned int n = matrix.m();
+    starts.assign(n + 1, 0);
+    indices.resize(matrix.n_nonzero_elements());
+    values.resize(matrix.n_nonzero_elements());
+    int k = 0;
+    for (unsigned int row = 0; row < n; ++row)
+    {
+      starts[row] = k;
+      // Insertion of each entry at its sorted place: only the leading
+      // diagonal entry moves, the rest is stored ascending already.
+      for (auto entry = matrix.begin(row); entry != matrix.end(row); ++entry)
+      {
+        int place = k++;
+        for (; place > starts[row] &&
+               indices[place - 1] > static_cast<int>(entry->column());
+             --place)
+        {
+          indices[place] = indices[place - 1];
+          values[place]  = values[place - 1];
+        }
+        indices[place] = entry->column();
+        values[place]  = entry->value();
+      }
+    }
+    starts[n] = k;
+  }
+
+  bool CompressedRows::same_pattern(const CompressedRows &other) const
+  {
+    return starts == other.starts && indices == other.indices;
+  }
+
+  int CompressedRows::n_rows() const
+  {
+    return static_cast<int>(starts.size()) - 1;
+  }
+} // namespace coshell::solvers

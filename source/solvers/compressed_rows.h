@@ -1,0 +1,22 @@
+#pragma once
+
+#include <deal.II/lac/sparse_matrix.h>
+
+#include <vector>
+
+namespace coshell::solvers
+{
+  /// A copy of a deal.II SparseMatrix in plain compressed-row arrays, the
+  /// form SuiteSparse reads (as compressed columns of the transpose).
+  /// Column indices ascend within each row: deal.II stores the diagonal
+  /// first, UMFPACK rejects unsorted columns.
+  struct CompressedRows
+  {
+    std::vector<int>    starts, indices;
+    std::vector<double> values;
+
+    void copy(const dealii::SparseMatrix<double> &matrix);
+    bool same_pattern(const CompressedRows &other) const;
+    int  n_rows() const;
+  };
+} // namespace coshell::solvers

@@ -1,0 +1,99 @@
+#include <coshell/solvers/umfpack_solver.h>
+
+#include "compressed_rows.h"
+
+#include <suitesparse/umfpack.h>
+
+#include <stdexcept>
+#include <string>
+
+namespace coshell::solvers
+{
+  using namespace dealii;
+
+  struct UmfpackSolver::Data
+  {
+    // Row storage of A is column storage of its transpose: UMFPACK factors
+    // A^T and solves with the transposed system (UMFPACK_At), giving A x = b.
+    CompressedRows matrix, analysed;
+    void          *symbolic   = nullptr;
+    void          *numeric    = nullptr;
+    unsigned int   n_analyses = 0;
+    double         control[UMFPACK_CONTROL];
+
+    Data()
+    {
+      umfpack_di_defaults(control);
+    }
+
+    ~Data()
+    {
+      free_numeric();
+      if (symbolic)
+        umfpack_di_free_symbolic(&symbolic);
+    }
+
+    void free_numeric()
+    {
+      if (numeric)
+        umfpack_di_free_numeric(&numeric);
+    }
+
+    void analyse()
+    {
+      if (symbolic)
+        umfpack_di_free_symbolic(&symbolic);
+      const int n      = matrix.n_rows();
+      const int status = umfpack_di_symbolic(
+          n, n, matrix.starts.data(), matrix.indices.data(),
+          matrix.values.data(), &symbolic, control, nullptr);
+      check(status, "symbolic analysis");
+      analysed = matrix;
+      ++n_analyses;
+    }
+
+    static void check(int status, const std::string &stage)
+    {
+      if (status == UMFPACK_WARNING_singular_matrix)
+        throw std::runtime_error(
+            "UMFPACK: the matrix is singular (" + stage +
+            "): missing supports, or a structure past a bifurcation");
+      if (status != UMFPACK_OK)
+        throw std::runtime_error("UMFPACK " + stage + " failed (status " +
+                                 std::to_string(status) + ")");
+    }
+  };
+
+  UmfpackSolver::UmfpackSolver() : data_(std::make_unique<Data>()) {}
+
+  UmfpackSolver::~UmfpackSolver() = default;
+
+  void UmfpackSolver::factorize(const SparseMatrix<double> &matrix)
+  {
+    Data &d = *data_;
+    d.matrix.copy(matrix);
+    if (!d.symbolic || !d.matrix.same_pattern(d.analysed))
+      d.analyse();
+    d.free_numeric();
+    const int status = umfpack_di_numeric(
+        d.matrix.starts.data(), d.matrix.indices.data(), d.matrix.values.data(),
+        d.symbolic, &d.numeric, d.control, nullptr);
+    Data::check(status, "numeric factorization");
+  }
+
+  void UmfpackSolver::solve(Vector<double> &x, const Vector<double> &b) const
+  {
+    const Data &d = *data_;
+    x.reinit(b.size());
+    const int status =
+        umfpack_di_solve(UMFPACK_At, d.matrix.starts.data(),
+                         d.matrix.indices.data(), d.matrix.values.data(),
+                         x.begin(), b.begin(), d.numeric, d.control, nullptr);
+    Data::check(status, "solve");
+  }
+
+  unsigned int UmfpackSolver::n_symbolic_analyses() const
+  {
+    return data_->n_analyses;
+  }
+} // namespace coshell::solvers
