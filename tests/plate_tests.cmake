@@ -98,7 +98,7 @@ add_test(NAME vtu_output_fields
 set_tests_properties(vtu_output_fields PROPERTIES LABELS system)
 
 # Every linear solver gives the same answer on the clamped plate.
-foreach(method cholmod umfpack amesos-klu cg-amg)
+foreach(method cholmod umfpack amesos-klu amesos-mumps cg-amg)
   coshell_scene_test(linear_solver.${method}
     plates/clamped_square_pressure.prm
     ARGS --set "Mesh/Refinement levels=3" --set ${no_vtu}

@@ -54,7 +54,7 @@ namespace coshell::solvers
     prm.enter_subsection("Linear solver");
     prm.declare_entry(
         "Method", "cholmod",
-        Patterns::Selection("cholmod|umfpack|amesos-klu|cg-amg"),
+        Patterns::Selection("cholmod|umfpack|amesos-klu|amesos-mumps|cg-amg"),
         "cholmod: SuiteSparse supernodal Cholesky, analysed "
         "once per sparsity pattern (symmetric positive "
         "definite systems; non-symmetric ones, such as the "
@@ -62,7 +62,8 @@ namespace coshell::solvers
         "umfpack); "
         "umfpack: SuiteSparse UMFPACK sparse LU, analysed once per "
         "sparsity pattern; "
-        "amesos-klu: Trilinos Amesos KLU direct solver; "
+        "amesos-klu, amesos-mumps: Trilinos Amesos with KLU or "
+        "MUMPS (direct; MUMPS is the route to distributed solves); "
         "cg-amg: conjugate gradients with Trilinos ML algebraic "
         "multigrid (see the AMG entries; slow on thin shells "
         "without the rigid-body near-null space).");
@@ -122,13 +123,13 @@ namespace coshell::solvers
     backend_->trilinos_matrix =
         std::make_unique<TrilinosWrappers::SparseMatrix>();
     backend_->trilinos_matrix->reinit(matrix);
-    if (method_ == "amesos-klu")
+    if (is_amesos())
     {
       backend_->trilinos_direct =
           std::make_unique<TrilinosWrappers::SolverDirect>(
               backend_->direct_control,
-              TrilinosWrappers::SolverDirect::AdditionalData(false,
-                                                             "Amesos_Klu"));
+              TrilinosWrappers::SolverDirect::AdditionalData(
+                  false, amesos_solver_name()));
       backend_->trilinos_direct->initialize(*backend_->trilinos_matrix);
     }
     else
@@ -158,6 +159,16 @@ namespace coshell::solvers
     }
     backend_->amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
     backend_->amg->initialize(*backend_->trilinos_matrix, parameters);
+  }
+
+  bool LinearSolver::is_amesos() const
+  {
+    return method_.rfind("amesos-", 0) == 0;
+  }
+
+  std::string LinearSolver::amesos_solver_name() const
+  {
+    return method_ == "amesos-mumps" ? "Amesos_Mumps" : "Amesos_Klu";
   }
 
   bool LinearSolver::uses_near_null_space() const
@@ -191,7 +202,7 @@ namespace coshell::solvers
     }
     const TrilinosWrappers::MPI::Vector rhs = backend_->to_trilinos(b);
     TrilinosWrappers::MPI::Vector solution(backend_->all_rows, MPI_COMM_SELF);
-    if (method_ == "amesos-klu")
+    if (is_amesos())
     {
       backend_->trilinos_direct->solve(solution, rhs);
       last_iterations_ = 1;

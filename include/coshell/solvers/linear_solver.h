@@ -53,6 +53,8 @@ namespace coshell::solvers
     struct Backend;
     std::unique_ptr<Backend> backend_;
 
-    void initialize_amg();
+    void        initialize_amg();
+    bool        is_amesos() const;
+    std::string amesos_solver_name() const;
   };
 } // namespace coshell::solvers
