@@ -612,25 +612,6 @@ namespace coshell::element
         }
     }
 
-    // T K_l T^T with T = diag(E, ..., E): the local stiffness rotated to
-    // global axes along the current frame only. Block by block,
-    // E K_IJ E^T with E = [e1 e2 e3] (axes holds its rows' transposes).
-    FullMatrix<double> rotated_stiffness(const FullMatrix<double> &local,
-                                         const Mat3<double>       &axes)
-    {
-      FullMatrix<double> global(shell_dofs, shell_dofs);
-      for (unsigned int row = 0; row < shell_dofs; ++row)
-        for (unsigned int column = 0; column < shell_dofs; ++column)
-        {
-          const unsigned int r = row % 3, c = column % 3;
-          for (unsigned int a = 0; a < 3; ++a)
-            for (unsigned int b = 0; b < 3; ++b)
-              global(row, column) +=
-                  axes[a][r] * local(row - r + a, column - c + b) * axes[b][c];
-        }
-      return global;
-    }
-
     CorotationalReference make_reference(const SpatialTriangle &initial)
     {
       CorotationalReference reference;
@@ -705,7 +686,14 @@ namespace coshell::element
     const CorotatedKinematics<1> jets(reference, current, rotations);
     force = transpose_times(jets.jacobian(), local_force(jets.dofs()));
     if (tangent != nullptr)
-      *tangent = rotated_stiffness(stiffness, jets.frame());
+    {
+      // The paper's tangent: K_l rotated along the current frame only.
+      const Mat3<double>         &e = jets.frame();
+      std::array<Tensor<1, 3>, 3> axes;
+      for (unsigned int a = 0; a < 3; ++a)
+        axes[a] = Tensor<1, 3>({e[a][0], e[a][1], e[a][2]});
+      *tangent = rotate_to_global(stiffness, axes);
+    }
   }
 
   ShellResultants

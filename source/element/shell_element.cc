@@ -38,18 +38,6 @@ namespace coshell::element
       return dofs;
     }
 
-    // T with u_local = T u_global: the frame axes as rows, once for the
-    // translations and once for the rotations of each node.
-    FullMatrix<double> frame_rotation(const ElementFrame &frame)
-    {
-      FullMatrix<double> rotation(shell_dofs, shell_dofs);
-      for (unsigned int block = 0; block < 6; ++block)
-        for (unsigned int a = 0; a < 3; ++a)
-          for (unsigned int b = 0; b < 3; ++b)
-            rotation(3 * block + a, 3 * block + b) = frame.axes[a][b];
-      return rotation;
-    }
-
     // sum_ab R_ab e_a (x) e_b over the in-plane axes, R = [[xx, xy], [xy, yy]].
     Tensor<2, 3> to_global_tensor(const ElementFrame          &frame,
                                   const std::array<double, 3> &resultant)
@@ -111,12 +99,36 @@ namespace coshell::element
                                      const ShellElementOptions &options)
   {
     material.validate(); // before the geometry check, as it always was
-    const ElementFrame       frame = make_element_frame(triangle);
-    const FullMatrix<double> local =
-        shell_stiffness_local(frame, material, options);
-    const FullMatrix<double> rotation = frame_rotation(frame);
-    FullMatrix<double>       global(shell_dofs, shell_dofs);
-    global.triple_product(local, rotation, rotation, true, false);
+    const ElementFrame frame = make_element_frame(triangle);
+    return rotate_to_global(shell_stiffness_local(frame, material, options),
+                            frame.axes);
+  }
+
+  FullMatrix<double> rotate_to_global(const FullMatrix<double>          &local,
+                                      const std::array<Tensor<1, 3>, 3> &axes)
+  {
+    // T = diag(R, ..., R) with R_ab = (e_a)_b, so each 3x3 block transforms
+    // on its own: K_IJ = R^T K_local,IJ R. Block by block this costs 36 x 54
+    // multiply-adds instead of the dense 2 x 18^3.
+    constexpr unsigned int blocks = shell_dofs / 3;
+    FullMatrix<double>     global(shell_dofs, shell_dofs);
+    for (unsigned int bi = 0; bi < blocks; ++bi)
+      for (unsigned int bj = 0; bj < blocks; ++bj)
+      {
+        double right[3][3] = {}; // K_local,IJ R
+        for (unsigned int a = 0; a < 3; ++a)
+          for (unsigned int b = 0; b < 3; ++b)
+            for (unsigned int c = 0; c < 3; ++c)
+              right[a][c] += local(3 * bi + a, 3 * bj + b) * axes[b][c];
+        for (unsigned int r = 0; r < 3; ++r)
+          for (unsigned int c = 0; c < 3; ++c)
+          {
+            double sum = 0;
+            for (unsigned int a = 0; a < 3; ++a)
+              sum += axes[a][r] * right[a][c];
+            global(3 * bi + r, 3 * bj + c) = sum;
+          }
+      }
     return global;
   }
 

@@ -38,6 +38,12 @@ namespace coshell::element
                                            const ShellMaterial       &material,
                                            const ShellElementOptions &options);
 
+  /// T^T K_local T for an 18x18 element matrix whose 3-blocks (per node,
+  /// translations then rotations) are in the frame with axes e_a (rows of
+  /// R, u_local = R u_global).
+  FullMatrix<double> rotate_to_global(const FullMatrix<double>          &local,
+                                      const std::array<Tensor<1, 3>, 3> &axes);
+
   /// Linear flat-shell stiffness in global axes: membrane and bending
   /// assembled in the element frame (make_element_frame) and rotated with
   /// K = T^T K_local T.
