@@ -19,9 +19,11 @@
 #define COSHELL_SOURCE_DIR "."
 #endif
 
-#ifndef COSHELL_GIT_COMMIT
-#define COSHELL_GIT_COMMIT "unknown"
-#endif
+namespace coshell
+{
+  /// Defined in the build tree (cmake/write_git_commit.cmake).
+  extern const char *const git_commit;
+} // namespace coshell
 
 namespace coshell::driver
 {
@@ -330,7 +332,7 @@ namespace coshell::driver
       summary = level_summaries.back();
     }
     summary["prm_file"]      = prm_file_;
-    summary["commit"]        = COSHELL_GIT_COMMIT;
+    summary["commit"]        = git_commit;
     summary["formulation"]   = element_.formulation_name();
     summary["element"]       = element_.element_name();
     summary["linear_solver"] = linear_solver_.method();
