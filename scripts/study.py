@@ -9,11 +9,14 @@ for each benchmark and error target, the fastest run that reaches it.
                    [--benchmarks plates/clamped_square_pressure ...]
                    [--elements cst+dkt andes+dkt ...] [--levels 0,1,2,3,4]
                    [--targets 0.005 0.001] [--plots doc/study]
+                   [--calculix doc/calculix/calculix_comparison.csv]
 
 Benchmarks are prm files under prm/ (without .prm); each must define one
 quantity of interest with a reference value. Element combinations are
 MEMBRANE+BENDING with MEMBRANE in cst|andes|off and BENDING in
-dkt|przemieniecki|off.
+dkt|przemieniecki|off. --calculix overlays, dashed, the CalculiX curves
+of scripts/calculix_compare.py (their time is whole-process wall time,
+ours the in-process total).
 """
 import argparse
 import csv
@@ -72,7 +75,27 @@ def row_of(benchmark, elements, level):
             "total_s": times["total"]}
 
 
-def plot_benchmark(rows, benchmark, directory):
+def read_calculix(path):
+    """CalculiX rows of a calculix_compare.py CSV ('#' lines skipped)."""
+    if not path:
+        return []
+    with open(path) as f:
+        rows = list(csv.DictReader(line for line in f if not line.startswith("#")))
+    return [r for r in rows if r["code"] == "calculix"]
+
+
+def plot_calculix(by_time, by_dofs, calculix_rows, benchmark, first_color):
+    mine = [r for r in calculix_rows if r["benchmark"] == benchmark]
+    for index, element in enumerate(sorted({r["element"] for r in mine})):
+        curve = [r for r in mine if r["element"] == element]
+        errors = [max(float(r["relative_error"]), 1e-16) for r in curve]
+        style = dict(marker="s", linestyle="--", color=f"C{(first_color + index) % 10}",
+                     label=f"CalculiX {element} (process)")
+        by_time.loglog([float(r["process_wall_s"]) for r in curve], errors, **style)
+        by_dofs.loglog([int(r["n_dofs"]) for r in curve], errors, **style)
+
+
+def plot_benchmark(rows, benchmark, directory, calculix_rows=()):
     figure, (by_time, by_dofs) = plt.subplots(1, 2, figsize=(10, 4))
     for index, elements in enumerate(sorted({r["elements"] for r in rows})):
         mine = [r for r in rows if r["elements"] == elements and r["relative_error"] != ""]
@@ -80,6 +103,8 @@ def plot_benchmark(rows, benchmark, directory):
         style = dict(marker="o", color=f"C{index}", label=elements)
         by_time.loglog([float(r["total_s"]) for r in mine], errors, **style)
         by_dofs.loglog([int(r["n_dofs"]) for r in mine], errors, **style)
+    plot_calculix(by_time, by_dofs, calculix_rows, benchmark,
+                  len({r["elements"] for r in rows}))
     by_time.set_xlabel("wall time per run [s]")
     by_dofs.set_xlabel("n_dofs")
     for axes in (by_time, by_dofs):
@@ -111,6 +136,7 @@ def main():
     parser.add_argument("--levels", default="0,1,2,3,4")
     parser.add_argument("--targets", nargs="+", type=float, default=[0.005, 0.001])
     parser.add_argument("--plots", default=os.path.join(ROOT, "doc", "study"))
+    parser.add_argument("--calculix", help="CSV of scripts/calculix_compare.py to overlay")
     args = parser.parse_args()
 
     rows = []
@@ -130,11 +156,13 @@ def main():
                             capture_output=True, text=True).stdout.strip()
     print(f"\nmachine: {platform.processor() or platform.machine()}, "
           f"{os.cpu_count()} cores; commit {commit}; table {table}")
+    calculix_rows = read_calculix(args.calculix)
     for benchmark in args.benchmarks:
         mine = [r for r in rows if r["benchmark"] == benchmark]
         if not mine:
             continue
-        print(f"{benchmark}: plot {plot_benchmark(mine, benchmark, args.plots)}")
+        path = plot_benchmark(mine, benchmark, args.plots, calculix_rows)
+        print(f"{benchmark}: plot {path}")
         for target in args.targets:
             best = fastest_to_target(mine, target)
             if best:
