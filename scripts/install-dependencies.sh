@@ -1,6 +1,9 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages CoShell needs, only those missing
 # (idempotent). Needs root or sudo.
+#   --with-peers   also the peer codes of the comparisons (CalculiX ccx),
+#                  which the set-up command installs and the CI test run
+#                  does not need.
 set -euo pipefail
 
 packages=(
@@ -12,6 +15,9 @@ packages=(
   python3 python3-matplotlib  # test checkers and plots (/usr/bin/python3)
   libopenblas0-pthread  # faster BLAS than the reference one for UMFPACK
 )
+if [ "${1:-}" = "--with-peers" ]; then
+  packages+=(calculix-ccx)  # scripts/calculix_compare.py
+fi
 
 missing=()
 for package in "${packages[@]}"; do
