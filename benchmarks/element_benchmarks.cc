@@ -1,11 +1,13 @@
 // Google Benchmark timings of the element kernels and of global assembly
 // (not tests: speed is measured here, never asserted). Run
-//   build/benchmarks/coshell_element_benchmarks --benchmark_format=csv
-// or through doc/scripts/performance_tables.py, which records the machine.
+//   build/benchmarks/coshell_element_benchmarks --benchmark_format=json
+// or through doc/scripts/performance_measurements.py, which records the
+// machine and commit.
 
 #include <coshell/element/corotational.h>
 #include <coshell/element/shell_element.h>
 #include <coshell/mesh/mesh.h>
+#include <coshell/model/cell_loop.h>
 #include <coshell/model/corotational_model.h>
 #include <coshell/model/shell_model.h>
 #include <coshell/model/shell_state.h>
@@ -83,9 +85,14 @@ namespace
   }
   BENCHMARK(corotational_kernel)->Arg(0)->Arg(1)->Arg(2);
 
-  /// Whole linear assembly (kernels + scatter) of the clamped plate, per
-  /// element, with 1 or 2 threads (arg).
-  void linear_assembly(benchmark::State &state)
+  /// Linear assembly of the clamped plate, 64 x 64 `crossed` (16384
+  /// triangles, CST+DKT), per element. Args: threads (1, 2) and scatter:
+  /// 0 runs geometry extraction + element kernels in the same WorkStream
+  /// loop (model::for_each_cell) as assembly and discards the matrices,
+  /// 1 is the full ShellModel::assemble_stiffness (kernels +
+  /// AffineConstraints::distribute_local_to_global), so the scatter costs
+  /// the difference.
+  void plate_assembly(benchmark::State &state)
   {
     dealii::MultithreadInfo::set_thread_limit(state.range(0));
     mesh::Surface surface;
@@ -100,16 +107,28 @@ namespace
     dealii::SparsityPattern pattern;
     model.make_sparsity(constraints, pattern);
     dealii::SparseMatrix<double> matrix(pattern);
+    const auto kernel_only = [&model](const model::CellIterator &cell,
+                                      model::CellContribution   &contribution)
+    {
+      contribution.matrix = element::shell_stiffness(
+          model.triangle(cell), model.element_parameters().material,
+          model.element_parameters().options);
+    };
+    const auto discard = [](const model::CellContribution &contribution)
+    { benchmark::DoNotOptimize(contribution.matrix(0, 0)); };
     for (auto _ : state)
-      model.assemble_stiffness(constraints, matrix);
+      if (state.range(1) == 1)
+        model.assemble_stiffness(constraints, matrix);
+      else
+        model::for_each_cell(model.dof_handler(), kernel_only, discard);
     state.counters["us_per_element"] =
         benchmark::Counter(surface.n_active_cells(),
                            benchmark::Counter::kIsIterationInvariantRate |
                                benchmark::Counter::kInvert);
   }
-  BENCHMARK(linear_assembly)
-      ->Arg(1)
-      ->Arg(2)
+  BENCHMARK(plate_assembly)
+      ->ArgsProduct({{1, 2}, {0, 1}})
+      ->ArgNames({"threads", "scatter"})
       ->Unit(benchmark::kMillisecond)
       ->UseRealTime();
 } // namespace

@@ -1,58 +1,84 @@
 #!/usr/bin/python3
 """Benchmark (not a test): wall time of the phases of a linear solve against
 the number of DoFs, for the clamped square plate under uniform pressure
-(prm/plates/clamped_square_pressure.prm: crossed pattern, CST + DKT, UMFPACK),
-one refinement level per run with Subdivisions x = y = n and no VTU output.
+(prm/plates/clamped_square_pressure.prm: crossed pattern, CST + DKT), one
+refinement level per run with Subdivisions x = y = n and no VTU output, for
+one or more Linear solver/Method values.
 
-Writes doc/performance/plate_scaling.csv (one row per run, with the phase
-times from summary.json, the peak resident memory of the coshell process and
-the 1-minute load average and the cores used by other processes just before
-the run) and doc/performance/plate_scaling.png
-(log-log, with the exponents b of t = a N^b fitted over N >= --fit-from).
+Writes doc/performance/plate_scaling.csv ('#' lines naming machine, cores,
+the commit of the coshell binary and of the checkout, and the solvers; one
+row per run with the phase times and thread count from summary.json, the
+process wall time, peak resident memory and bytes per DoF from
+/usr/bin/time -v, and the load just before the run) and
+doc/performance/plate_scaling.png (log-log: assembly, solve per method,
+total; exponents b of t = a N^b fitted over N >= --fit-from in the legend).
+With --speedup-size n it also runs that size with DEAL_II_NUM_THREADS = 1
+and 2 into doc/performance/plate_threads.csv (2-thread assembly speedup).
 
-Usage (from the repository root; /usr/bin/python3 has matplotlib):
+Every run holds --lock (flock, shared with the other measurements on this
+machine), and waits until other processes use less than --max-busy cores.
 
-  /usr/bin/python3 doc/scripts/benchmark_plate_scaling.py --coshell build/coshell
-      [--sizes 8 16 32 ...] [--repeats 3] [--fit-from 1e5] [--plot-only]
+Usage (from the repository root; /usr/bin/python3 has matplotlib); the
+measurements of doc/performance.md:
 
-Run it on a quiet machine (uptime load < 1) and a Release build; the script
-waits for the load to drop before starting and, before every run, until
-other processes use less than --max-busy cores.
+  /usr/bin/python3 doc/scripts/benchmark_plate_scaling.py \
+      --coshell /tmp/coshell-stable2/coshell --commit a21ba22 \
+      --methods cholmod umfpack:2.1e6 --speedup-size 362
+
+  options: [--sizes 8 16 32 ...] [--repeats 3] [--large-repeats 1]
+           [--fit-from 1e5] [--plot-only] [--merge]
+
+Runs where other processes used CPU anyway (busy_cores_others_during > 0.2)
+should be re-measured with --merge --sizes ....
+
+A method is written METHOD or METHOD:MAX_DOFS (sizes above MAX_DOFS are
+skipped for it).
 """
+
 import argparse
 import csv
+import fcntl
 import json
 import math
 import os
+import re
 import shutil
 import subprocess
 import sys
 import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from doc_common import machine_and_commit  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 PRM = os.path.join(ROOT, "prm", "plates", "clamped_square_pressure.prm")
 OUT_DIR = os.path.join(ROOT, "doc", "performance")
 CSV_PATH = os.path.join(OUT_DIR, "plate_scaling.csv")
 PNG_PATH = os.path.join(OUT_DIR, "plate_scaling.png")
+THREADS_CSV_PATH = os.path.join(OUT_DIR, "plate_threads.csv")
 PHASES = ["setup", "assemble", "solve", "output", "total"]
-FIELDS = (["subdivisions", "repeat", "n_cells", "n_dofs", "center_deflection",
-           "relative_error"] + [f"{p}_s" for p in PHASES] +
-          ["process_wall_s", "process_cpu_s", "peak_rss_mb", "load_1min_before",
-           "busy_cores_before", "commit"])
+FIELDS = (["method", "subdivisions", "repeat", "threads", "n_cells", "n_dofs",
+           "center_deflection", "relative_error"] + [f"{p}_s" for p in PHASES] +
+          ["process_wall_s", "process_cpu_s", "peak_rss_mb", "bytes_per_dof",
+           "load_1min_before", "busy_cores_before", "busy_cores_others_during",
+           "commit"])
+
+
+def cpu_seconds():
+    """(busy, total) CPU time of all processes so far, from /proc/stat."""
+    with open("/proc/stat") as f:
+        values = [int(v) for v in f.readline().split()[1:]]
+    ticks = os.sysconf("SC_CLK_TCK")
+    return (sum(values) - values[3] - values[4]) / ticks, sum(values) / ticks
 
 
 def busy_cores(seconds=3.0):
-    """CPU cores in use by all processes over a short interval (from
-    /proc/stat), measured between runs, i.e. by other users."""
-    def sample():
-        with open("/proc/stat") as f:
-            values = [int(v) for v in f.readline().split()[1:]]
-        idle = values[3] + values[4]
-        return sum(values) - idle, sum(values)
-    busy0, total0 = sample()
+    """CPU cores in use by all processes over a short interval, measured
+    between runs, i.e. by other users."""
+    busy0, total0 = cpu_seconds()
     time.sleep(seconds)
-    busy1, total1 = sample()
-    return (busy1 - busy0) / max(1, total1 - total0) * os.cpu_count()
+    busy1, total1 = cpu_seconds()
+    return (busy1 - busy0) / max(1e-9, total1 - total0) * os.cpu_count()
 
 
 def wait_until_quiet(max_busy, timeout):
@@ -67,56 +93,76 @@ def wait_until_quiet(max_busy, timeout):
     return busy
 
 
-def run(coshell, n, repeat, work, max_busy, timeout):
-    output = os.path.join(work, f"n{n}-r{repeat}")
+def run(coshell, method, n, repeat, args, threads=None):
+    """One coshell run under the measurement lock; returns the CSV row.
+    threads: value of DEAL_II_NUM_THREADS (None: all cores)."""
+    output = os.path.join(args.work, f"{method}-n{n}-r{repeat}")
     if os.path.isdir(output):
         shutil.rmtree(output)
-    command = [coshell, PRM, "--output", output,
+    command = ["/usr/bin/time", "-v", coshell, PRM, "--output", output,
                "--set", "Mesh/Triangle pattern=crossed",
                "--set", "Element/Membrane element=cst",
                "--set", "Element/Bending element=dkt",
                "--set", "Mesh/Refinement levels=0",
                "--set", f"Mesh/Subdivisions x={n}",
                "--set", f"Mesh/Subdivisions y={n}",
+               "--set", f"Linear solver/Method={method}",
                "--set", "Output/Write VTU=false"]
-    others = wait_until_quiet(max_busy, timeout)
-    load = os.getloadavg()[0]
-    start = time.monotonic()
-    process = subprocess.Popen(command, stdout=subprocess.DEVNULL)
-    _, status, usage = os.wait4(process.pid, 0)
-    wall = time.monotonic() - start
-    if status != 0:
-        sys.exit(f"coshell failed for n = {n} (status {status})")
+    environment = dict(os.environ)
+    environment.pop("DEAL_II_NUM_THREADS", None)
+    if threads is not None:
+        environment["DEAL_II_NUM_THREADS"] = str(threads)
+    with open(args.lock, "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        others = wait_until_quiet(args.max_busy, args.quiet_timeout)
+        load = os.getloadavg()[0]
+        busy_start, _ = cpu_seconds()
+        start = time.monotonic()
+        process = subprocess.run(command, stdout=subprocess.DEVNULL,
+                                 stderr=subprocess.PIPE, text=True, env=environment)
+        wall = time.monotonic() - start
+        busy_during = cpu_seconds()[0] - busy_start
+    if process.returncode != 0:
+        sys.exit(f"coshell failed for {method}, n = {n}:\n{process.stderr[-2000:]}")
     with open(os.path.join(output, "summary.json")) as f:
         summary = json.load(f)
     shutil.rmtree(output)
-    row = dict(subdivisions=n, repeat=repeat, n_cells=summary["n_cells"],
+
+    def time_v(label):
+        return float(re.search(re.escape(label) + r": ([0-9.]+)", process.stderr).group(1))
+    rss_kb = time_v("Maximum resident set size (kbytes)")
+    cpu = time_v("User time (seconds)") + time_v("System time (seconds)")
+    row = dict(method=method, subdivisions=n, repeat=repeat,
+               threads=summary.get("threads", ""), n_cells=summary["n_cells"],
                n_dofs=summary["n_dofs"],
                center_deflection=summary["qoi"]["center_deflection"],
                relative_error=summary["relative_error"]["center_deflection"],
                process_wall_s=wall,
-               process_cpu_s=usage.ru_utime + usage.ru_stime,
-               peak_rss_mb=usage.ru_maxrss / 1024.0,
+               process_cpu_s=cpu,
+               peak_rss_mb=rss_kb / 1024.0,
+               bytes_per_dof=round(rss_kb * 1024 / summary["n_dofs"]),
                load_1min_before=load, busy_cores_before=others,
-               commit=summary.get("commit", "unknown"))
+               busy_cores_others_during=max(0.0, busy_during - cpu) / wall,
+               commit=args.commit or summary.get("commit", "unknown"))
     for phase in PHASES:
         row[f"{phase}_s"] = summary["wall_time_s"][phase]
-    print(f"n = {n:4d}  N = {row['n_dofs']:8d}  " +
+    print(f"{method:8s} n = {n:4d}  N = {row['n_dofs']:8d}  threads {row['threads']}  " +
           "  ".join(f"{p} {row[p + '_s']:8.3f}" for p in PHASES) +
           f"  cpu/wall {row['process_cpu_s'] / wall:4.2f}"
-          f"  rss {row['peak_rss_mb']:7.0f} MB  load {load:.2f}"
-          f"  others {others:.2f} cores", flush=True)
+          f"  rss {row['peak_rss_mb']:7.0f} MB ({row['bytes_per_dof']} B/DoF)"
+          f"  others {others:.2f} cores before,"
+          f" {row['busy_cores_others_during']:.2f} during", flush=True)
     return row
 
 
 def best_of(rows):
-    """Per size, the repeat with the smallest total time."""
+    """Per method and size, the repeat with the smallest total time."""
     best = {}
     for row in rows:
-        n = int(row["n_dofs"])
-        if n not in best or float(row["total_s"]) < float(best[n]["total_s"]):
-            best[n] = row
-    return [best[n] for n in sorted(best)]
+        key = (row["method"], int(row["n_dofs"]))
+        if key not in best or float(row["total_s"]) < float(best[key]["total_s"]):
+            best[key] = row
+    return [best[key] for key in sorted(best)]
 
 
 def fit(xs, ys):
@@ -129,36 +175,37 @@ def fit(xs, ys):
     return math.exp(my - b * mx), b
 
 
-def plot(rows, fit_from, machine):
+def plot(rows, fit_from, title):
+    """Assembly and total of the first method, solve of every method;
+    returns {curve: fitted exponent}."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
     rows = best_of(rows)
-    fig, ax = plt.subplots(figsize=(7.5, 5.5))
-    colours = {"setup": "tab:gray", "assemble": "tab:blue",
-               "solve": "tab:red", "output": "tab:green", "total": "black"}
+    methods = list(dict.fromkeys(r["method"] for r in rows))
+    curves = [(f"assemble ({methods[0]})", methods[0], "assemble", "tab:blue", "o")]
+    curves += [(f"solve ({m})", m, "solve", colour, marker)
+               for m, colour, marker in zip(methods, ["tab:red", "tab:orange", "tab:purple"],
+                                            ["s", "^", "v"])]
+    curves += [(f"total ({methods[0]})", methods[0], "total", "black", "D")]
+    fig, ax = plt.subplots(figsize=(7.5, 6))
     exponents = {}
-    for phase in ["setup", "assemble", "solve", "total"]:
-        xs = [float(r["n_dofs"]) for r in rows]
-        ys = [float(r[f"{phase}_s"]) for r in rows]
-        ax.loglog(xs, ys, "o", color=colours[phase], markersize=4)
+    for label, method, phase, colour, marker in curves:
+        mine = [r for r in rows if r["method"] == method]
+        xs = [float(r["n_dofs"]) for r in mine]
+        ys = [float(r[f"{phase}_s"]) for r in mine]
         fx = [x for x in xs if x >= fit_from]
         fy = [y for x, y in zip(xs, ys) if x >= fit_from]
         if len(fx) >= 2:
             a, b = fit(fx, fy)
-            exponents[phase] = b
-            ax.loglog(fx, [a * x ** b for x in fx], "-", color=colours[phase],
-                      label=f"{phase}: t ~ N^{b:.2f}")
-    xs = [float(r["n_dofs"]) for r in rows]
-    x0, y0 = xs[-1], float(rows[-1]["total_s"])
-    ax.loglog([xs[0], x0], [y0 * xs[0] / x0 / 3, y0 / 3], ":", color="gray",
-              label="O(N) guide")
+            exponents[label] = b
+            label = f"{label}: t ~ N^{b:.2f}"
+            ax.loglog(fx, [a * x ** b for x in fx], "-", color=colour, linewidth=0.8)
+        ax.loglog(xs, ys, marker, color=colour, markersize=4, label=label)
     ax.set_xlabel("number of DoFs N")
-    ax.set_ylabel("wall time [s] (best of repeats)")
-    ax.set_title("Clamped square plate, crossed pattern, CST+DKT, UMFPACK, "
-                 f"commit {rows[-1]['commit']}\n{machine}; fits over "
-                 f"N >= {fit_from:g}", fontsize=9)
+    ax.set_ylabel("wall time [s] (summary.json, best of repeats)")
+    ax.set_title(f"{title}\nfits over N >= {fit_from:g}", fontsize=8)
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=8)
     fig.tight_layout()
@@ -167,78 +214,113 @@ def plot(rows, fit_from, machine):
     return exponents
 
 
-def machine_name():
-    model, cores = "unknown CPU", os.cpu_count()
-    try:
-        for line in subprocess.run(["lscpu"], capture_output=True,
-                                   text=True).stdout.splitlines():
-            if line.startswith("Model name:"):
-                model = line.split(":", 1)[1].strip()
-    except OSError:
-        pass
+def provenance(rows):
+    """'#' lines of the CSV files: machine, commits, solvers, threads."""
+    machine, checkout = machine_and_commit()
     memory = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES") / 2 ** 30
-    return f"{model}, {cores} cores, {memory:.0f} GiB"
+    binary = ", ".join(sorted({str(r["commit"]) for r in rows}))
+    return [f"machine: {machine}, {memory:.0f} GiB",
+            f"coshell commit (summary.json): {binary}; checkout: {checkout}",
+            "solvers: " + ", ".join(dict.fromkeys(r["method"] for r in rows)) +
+            "; threads: " + ", ".join(sorted({str(r["threads"]) for r in rows}))]
+
+
+def write_rows(path, rows):
+    with open(path, "w", newline="") as f:
+        for line in provenance(rows):
+            f.write(f"# {line}\n")
+        writer = csv.DictWriter(f, fieldnames=FIELDS)
+        writer.writeheader()
+        for row in rows:
+            writer.writerow({k: (f"{v:.6g}" if isinstance(v, float) else v)
+                             for k, v in row.items()})
+    print("wrote", path)
+
+
+def read_rows(path):
+    with open(path) as f:
+        return list(csv.DictReader(line for line in f if not line.startswith("#")))
+
+
+def parse_method(text):
+    name, _, limit = text.partition(":")
+    return name, float(limit) if limit else math.inf
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--coshell", default=os.path.join(ROOT, "build", "coshell"))
+    parser.add_argument("--methods", nargs="+", type=parse_method,
+                        default=[("cholmod", math.inf)],
+                        help="METHOD or METHOD:MAX_DOFS; the first gives the "
+                             "assembly and total curves")
     parser.add_argument("--sizes", type=int, nargs="*",
-                        default=[8, 16, 32, 45, 64, 90, 128, 181, 256, 300, 330, 362, 384, 408])
+                        default=[8, 16, 32, 45, 64, 90, 128, 181, 256, 300, 362,
+                                 408, 450, 500])
     parser.add_argument("--repeats", type=int, default=3,
                         help="repeats for runs below 2e5 DoFs")
     parser.add_argument("--large-repeats", type=int, default=1,
                         help="repeats for runs from 2e5 DoFs on")
+    parser.add_argument("--speedup-size", type=int,
+                        help="also run this size with DEAL_II_NUM_THREADS = 1 "
+                             "and 2 (3 repeats each) into plate_threads.csv")
+    parser.add_argument("--commit",
+                        help="commit of the coshell binary, recorded instead of "
+                             "summary.json's (which is stamped when cmake is "
+                             "configured, so stale in a build dir reused "
+                             "across commits)")
     parser.add_argument("--fit-from", type=float, default=1e5)
     parser.add_argument("--work", default="/tmp/coshell-benchmark")
+    parser.add_argument("--lock", default="/tmp/coshell-measure.lock")
     parser.add_argument("--plot-only", action="store_true")
-    parser.add_argument("--max-load", type=float, default=1.0,
-                        help="wait (up to 30 min) until the 1-minute load "
-                             "average is below this before starting")
-    parser.add_argument("--max-busy", type=float, default=0.1,
+    parser.add_argument("--merge", action="store_true",
+                        help="keep the rows of the existing CSV for (method, "
+                             "size) pairs not measured now (to re-measure a "
+                             "few sizes)")
+    parser.add_argument("--max-busy", type=float, default=0.3,
                         help="before each run, wait (up to --quiet-timeout s) "
                              "until other processes use fewer cores than this")
-    parser.add_argument("--quiet-timeout", type=float, default=1800)
-    parser.add_argument("--merge", action="store_true",
-                        help="keep the rows of the existing CSV for sizes "
-                             "not in --sizes (to re-measure a few sizes)")
+    parser.add_argument("--quiet-timeout", type=float, default=600)
     args = parser.parse_args()
 
     os.makedirs(OUT_DIR, exist_ok=True)
     os.makedirs(args.work, exist_ok=True)
     if args.plot_only:
-        with open(CSV_PATH) as f:
-            rows = list(csv.DictReader(f))
+        rows = read_rows(CSV_PATH)
     else:
         coshell = os.path.abspath(args.coshell)
-        deadline = time.monotonic() + 1800
-        while os.getloadavg()[0] >= args.max_load and time.monotonic() < deadline:
-            print(f"load {os.getloadavg()[0]:.2f} >= {args.max_load}: waiting",
-                  flush=True)
-            time.sleep(30)
         rows = []
-        for n in args.sizes:
-            expected_dofs = 6 * ((n + 1) ** 2 + n ** 2)
-            repeats = args.repeats if expected_dofs < 2e5 else args.large_repeats
-            for repeat in range(repeats):
-                rows.append(run(coshell, n, repeat, args.work,
-                                args.max_busy, args.quiet_timeout))
+        for method, max_dofs in args.methods:
+            for n in args.sizes:
+                expected_dofs = 6 * ((n + 1) ** 2 + n ** 2)
+                if expected_dofs > max_dofs:
+                    continue
+                repeats = args.repeats if expected_dofs < 2e5 else args.large_repeats
+                for repeat in range(repeats):
+                    rows.append(run(coshell, method, n, repeat, args))
         if args.merge and os.path.exists(CSV_PATH):
-            with open(CSV_PATH) as f:
-                kept = [r for r in csv.DictReader(f)
-                        if int(r["subdivisions"]) not in args.sizes]
-            rows = sorted(kept + rows, key=lambda r: (int(r["subdivisions"]),
-                                                      int(r["repeat"])))
-        with open(CSV_PATH, "w", newline="") as f:
-            writer = csv.DictWriter(f, fieldnames=FIELDS)
-            writer.writeheader()
-            for row in rows:
-                writer.writerow({k: (f"{v:.6g}" if isinstance(v, float) else v)
-                                 for k, v in row.items()})
-    machine = machine_name()
-    exponents = plot(rows, args.fit_from, machine)
-    print("machine:", machine)
+            measured = {(r["method"], str(r["subdivisions"])) for r in rows}
+            rows = sorted([r for r in read_rows(CSV_PATH)
+                           if (r["method"], r["subdivisions"]) not in measured] + rows,
+                          key=lambda r: (r["method"] != args.methods[0][0], r["method"],
+                                         int(r["subdivisions"]), int(r["repeat"])))
+        write_rows(CSV_PATH, rows)
+        if args.speedup_size:
+            speedup = [run(coshell, args.methods[0][0], args.speedup_size, repeat,
+                           args, threads)
+                       for threads in (1, 2) for repeat in range(3)]
+            write_rows(THREADS_CSV_PATH, speedup)
+    if os.path.exists(THREADS_CSV_PATH):
+        speedup = read_rows(THREADS_CSV_PATH)
+        best = {t: min(float(r["assemble_s"]) for r in speedup if r["threads"] == t)
+                for t in ("1", "2")}
+        print(f"assembly at N = {speedup[0]['n_dofs']}: 1 thread {best['1']:.3f} s, "
+              f"2 threads {best['2']:.3f} s, speedup {best['1'] / best['2']:.2f}")
+    header = provenance(rows)
+    exponents = plot(rows, args.fit_from,
+                     "\n".join(["clamped square plate, crossed, CST+DKT"] + header))
+    print("\n".join(header))
     print("fitted exponents (N >= %g):" % args.fit_from,
           ", ".join(f"{p} {b:.2f}" for p, b in exponents.items()))
 

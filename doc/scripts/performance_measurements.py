@@ -2,9 +2,11 @@
 """Measurements behind doc/performance.md (sections on element kernels,
 linear solvers and memory). Writes into doc/performance/:
 
-  element_benchmarks.csv   raw Google Benchmark CSV of
-                           coshell_element_benchmarks (with '#' header lines
-                           naming machine and commit)
+  element_benchmarks.csv   Google Benchmark aggregates (mean, stddev, ...)
+                           of coshell_element_benchmarks (with '#' header
+                           lines naming machine and commit)
+  assembly_breakdown.csv   clamped-plate assembly per element, 1 and 2
+                           threads: kernel, scatter, total
   linear_solvers.csv       clamped square plate (prm/plates/
                            clamped_square_pressure.prm, one refinement level
                            per run) solved by each Linear solver/Method:
@@ -17,8 +19,6 @@ linear solvers and memory). Writes into doc/performance/:
       [--skip-kernels] [--skip-solvers]
 """
 import argparse
-import csv
-import io
 import json
 import os
 import re
@@ -38,31 +38,44 @@ METHODS = ["cholmod", "umfpack", "amesos-klu", "cg-amg"]
 
 
 def kernels(args, header):
+    """One run of coshell_element_benchmarks in JSON (the CSV reporter aborts
+    when only some benchmarks carry the us_per_element counter): the mean of
+    3 repetitions per benchmark into element_benchmarks.csv, and the
+    per-element split of the plate assembly (kernel, scatter = full - kernel)
+    into assembly_breakdown.csv."""
     binary = os.path.join(args.build, "benchmarks", "coshell_element_benchmarks")
-    # Google Benchmark's CSV reporter aborts when only some benchmarks
-    # define a user counter (us_per_element), so the kernels and the
-    # assembly are run as two filtered invocations and concatenated.
-    parts = []
-    for pattern in ("kernel", "linear_assembly"):
-        result = subprocess.run([binary, "--benchmark_format=csv",
-                                 f"--benchmark_filter={pattern}",
-                                 "--benchmark_repetitions=3",
-                                 "--benchmark_report_aggregates_only=true"],
-                                capture_output=True, text=True, check=True)
-        parts.append(result.stdout[result.stdout.index("name,"):])
-    # two CSV blocks, each with its own header line
-    text = parts[0].rstrip("\n") + "\n" + parts[1]
-    path = os.path.join(OUT, "element_benchmarks.csv")
-    with open(path, "w") as f:
-        for line in header:
-            f.write(f"# {line}\n")
-        f.write(text)
-    print("wrote", path)
-    for row in (r for part in parts for r in csv.DictReader(io.StringIO(part))):
-        extra = f" us_per_element={float(row['us_per_element']) * 1e6:.3f}" \
-            if row.get("us_per_element") else ""
-        print(f"{row['name']:45s} real {float(row['real_time']):10.3f} {row['time_unit']}"
-              f" cpu {float(row['cpu_time']):10.3f}{extra}")
+    result = subprocess.run([binary, "--benchmark_format=json",
+                             "--benchmark_repetitions=3",
+                             "--benchmark_report_aggregates_only=true"],
+                            capture_output=True, text=True, check=True)
+    report = json.loads(result.stdout)
+    context = report["context"]
+    header = header + [f"Google Benchmark: {context['num_cpus']} CPUs at "
+                       f"{context['mhz_per_cpu']} MHz, library built as "
+                       f"{context['library_build_type']}, {context['date']}"]
+    rows = [{"name": b["run_name"], "aggregate": b["aggregate_name"],
+             "real_time": f"{b['real_time']:.6g}", "cpu_time": f"{b['cpu_time']:.6g}",
+             "time_unit": b["time_unit"],
+             "us_per_element": f"{b['us_per_element'] * 1e6:.4g}" if "us_per_element" in b else ""}
+            for b in report["benchmarks"]
+            if b.get("aggregate_name") in ("mean", "median", "stddev")]
+    write_csv(os.path.join(OUT, "element_benchmarks.csv"), rows, header)
+    for row in rows:
+        if row["aggregate"] == "mean":
+            print(f"{row['name']:45s} {row['real_time']:>10s} {row['time_unit']}"
+                  f" {row['us_per_element'] and row['us_per_element'] + ' us/element'}")
+    per_element = {r["name"]: float(r["us_per_element"]) for r in rows
+                   if r["aggregate"] == "mean" and r["us_per_element"]}
+    breakdown = []
+    for threads in (1, 2):
+        kernel = per_element[f"plate_assembly/threads:{threads}/scatter:0/real_time"]
+        total = per_element[f"plate_assembly/threads:{threads}/scatter:1/real_time"]
+        breakdown.append({"threads": threads, "kernel_us_per_element": f"{kernel:.3f}",
+                          "scatter_us_per_element": f"{total - kernel:.3f}",
+                          "assembly_us_per_element": f"{total:.3f}"})
+    write_csv(os.path.join(OUT, "assembly_breakdown.csv"), breakdown, header)
+    for row in breakdown:
+        print(row)
 
 
 def solvers(args, header):
