@@ -22,7 +22,6 @@ import argparse
 import csv
 import json
 import os
-import platform
 import subprocess
 import sys
 
@@ -32,6 +31,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, "doc", "scripts"))
+from doc_common import machine_and_commit  # noqa: E402
 DEFAULT_BENCHMARKS = ["plates/clamped_square_pressure",
                       "obstacle_course/scordelis_lo_roof",
                       "obstacle_course/pinched_cylinder",
@@ -152,10 +153,8 @@ def main():
         writer = csv.DictWriter(f, fieldnames=FIELDS)
         writer.writeheader()
         writer.writerows(rows)
-    commit = subprocess.run(["git", "-C", ROOT, "rev-parse", "--short", "HEAD"],
-                            capture_output=True, text=True).stdout.strip()
-    print(f"\nmachine: {platform.processor() or platform.machine()}, "
-          f"{os.cpu_count()} cores; commit {commit}; table {table}")
+    machine, commit = machine_and_commit()
+    print(f"\nmachine: {machine}; commit {commit}; table {table}")
     calculix_rows = read_calculix(args.calculix)
     for benchmark in args.benchmarks:
         mine = [r for r in rows if r["benchmark"] == benchmark]

@@ -110,7 +110,9 @@ def newton_orders(history):
     consecutive relative residuals with r0 < 1e-2, decreasing, r2 > 1e-13."""
     steps = {}
     for row in history:
-        steps.setdefault(row["step"], []).append(float(row["relative_residual"]))
+        # a run killed by the timeout may leave a truncated last row
+        if row.get("relative_residual") not in (None, ""):
+            steps.setdefault(row["step"], []).append(float(row["relative_residual"]))
     orders = []
     for residuals in steps.values():
         for r0, r1, r2 in zip(residuals, residuals[1:], residuals[2:]):

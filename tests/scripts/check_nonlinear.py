@@ -13,6 +13,8 @@ Newton history against references given here.
      [--monotone QOI]
      [--minimum QOI LOAD_FACTOR VALUE]  the QOI at that load factor is at
                                least VALUE
+     [--min-steps N]           the path has at least N converged steps (with
+                               one requested load step: a step was cut)
 """
 import argparse
 import csv
@@ -77,6 +79,7 @@ def main():
     parser.add_argument("--limit-point", action="store_true")
     parser.add_argument("--monotone")
     parser.add_argument("--minimum", nargs=3, action="append", default=[])
+    parser.add_argument("--min-steps", type=int)
     args = parser.parse_args()
 
     if os.path.isdir(args.output):
@@ -113,6 +116,11 @@ def main():
         print(f"most Newton iterations in a step: {worst} (limit {args.max_iterations})")
         if worst > args.max_iterations:
             failures.append("too many iterations")
+    if args.min_steps is not None:
+        checks += 1
+        print(f"converged steps: {len(rows)} (required >= {args.min_steps})")
+        if len(rows) < args.min_steps:
+            failures.append("fewer converged steps than required (no step cut?)")
     if args.limit_point:
         checks += 1
         factors = [float(r["load_factor"]) for r in rows]
