@@ -488,4 +488,3 @@ TEST(AndesShell, UsesTheAndesMembraneWithoutDrillingPenalty)
     EXPECT_NEAR(resultants.membrane_local[c], expected[c],
                 1e-14 * std::abs(expected[0]));
 }
-

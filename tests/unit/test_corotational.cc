@@ -611,7 +611,6 @@ TEST(FollowerPressure, TotalForceAndLoadStiffness)
   EXPECT_LT(error, 1e-7 * stiffness.frobenius_norm());
 }
 
-
 // K_l comes from shell_stiffness_local, so the ANDES membrane (genuine
 // drilling stiffness, no penalty) needs nothing of its own here.
 TEST(CorotationalShell, AndesMembraneKeepsTheKernelConsistent)
