@@ -48,7 +48,7 @@ import sys
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from doc_common import machine_and_commit  # noqa: E402
+from doc_common import machine_and_commit, write_csv  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 PRM = os.path.join(ROOT, "prm", "plates", "clamped_square_pressure.prm")
@@ -226,15 +226,9 @@ def provenance(rows):
 
 
 def write_rows(path, rows):
-    with open(path, "w", newline="") as f:
-        for line in provenance(rows):
-            f.write(f"# {line}\n")
-        writer = csv.DictWriter(f, fieldnames=FIELDS)
-        writer.writeheader()
-        for row in rows:
-            writer.writerow({k: (f"{v:.6g}" if isinstance(v, float) else v)
-                             for k, v in row.items()})
-    print("wrote", path)
+    formatted = [{k: (f"{v:.6g}" if isinstance(v, float) else v) for k, v in row.items()}
+                 for row in rows]
+    write_csv(path, formatted, provenance(rows), FIELDS)
 
 
 def read_rows(path):
