@@ -8,7 +8,7 @@
 #include <coshell/element/shell_element.h>
 #include <coshell/mesh/mesh.h>
 #include <coshell/model/cell_loop.h>
-#include <coshell/model/corotational_model.h>
+#include <coshell/model/internal_force.h>
 #include <coshell/model/shell_model.h>
 #include <coshell/model/shell_state.h>
 

@@ -104,3 +104,9 @@ coshell_bad_input_test(newton_failure "load step from load factor 0 to 1 failed 
 coshell_nonlinear_test(corotational.clamped_square_plate_large_deflection
   benchmarks/clamped_square_plate_large_deflection.prm
   ARGS --minimum center_deflection 1 0.5)
+
+# Solver combinations that cannot work stop with a clear message.
+coshell_bad_input_test(corotational_linear_static "Analysis/Type = linear static .* set Analysis/Type = nonlinear static"
+  ${COSHELL_PRM}/benchmarks/cantilever_end_moment.prm --set "Analysis/Type=linear static")
+coshell_bad_input_test(cg_on_non_symmetric_tangent "Linear solver/Method = cg-amg .*needs a symmetric matrix.*consistent co-rotational"
+  ${COSHELL_PRM}/benchmarks/cantilever_end_moment.prm --set "Linear solver/Method=cg-amg")

@@ -121,6 +121,10 @@ def newton_orders(history):
     return orders
 
 
+PLOT_SCRIPT = os.path.join(os.path.dirname(os.path.abspath(__file__)),
+                           "..", "..", "scripts", "plot_load_displacement.py")
+
+
 def run(args, name, prm, sets, tangent):
     output = os.path.join(args.work, f"{name}-{tangent}")
     if os.path.isdir(output):
@@ -237,6 +241,9 @@ def main():
             references += reference_errors(name, tangent, rows, points, length)
             if tangent != "consistent":
                 continue
+            # coshell writes CSVs only; the plot is drawn here.
+            subprocess.run(["/usr/bin/python3", PLOT_SCRIPT, output],
+                           capture_output=True)
             for src, dst in (("load_displacement.csv", f"{name}.csv"),
                              ("newton_history.csv", f"{name}_newton_history.csv"),
                              ("load_displacement.png", f"{name}.png")):

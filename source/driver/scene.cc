@@ -1,23 +1,21 @@
 #include <coshell/driver/scene.h>
+#include <coshell/io/csv_file.h>
 #include <coshell/io/results.h>
-#include <coshell/model/corotational_model.h>
+#include <coshell/model/external_loads.h>
+#include <coshell/model/internal_force.h>
 #include <coshell/model/rigid_body_modes.h>
 #include <coshell/model/shell_model.h>
+#include <coshell/model/shell_problem.h>
 #include <coshell/model/shell_state.h>
 #include <coshell/solvers/linear_static.h>
 #include <coshell/solvers/parallel_environment.h>
 
 #include <chrono>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
 #include <stdexcept>
-
-#ifndef COSHELL_SOURCE_DIR
-#define COSHELL_SOURCE_DIR "."
-#endif
 
 namespace coshell
 {
@@ -110,7 +108,15 @@ namespace coshell::driver
     model::Loads::declare_parameters(prm);
     model::QuantitiesOfInterest::declare_parameters(prm);
     solvers::LinearSolver::declare_parameters(prm);
-    solvers::NonlinearStatic::declare_parameters(prm);
+    solvers::PathFollowing::declare_parameters(prm);
+    prm.enter_subsection("Analysis");
+    prm.declare_entry(
+        "Type", "linear static",
+        Patterns::Selection("linear static|nonlinear static"),
+        "linear static: one linear solve (Element/Formulation = linear); "
+        "nonlinear static: the equilibrium path by Newton (subsection "
+        "Nonlinear solver), with linear or co-rotational kinematics.");
+    prm.leave_subsection();
     io::VtuOutput::declare_parameters(prm);
     solvers::ThreadSettings::declare_parameters(prm);
   }
@@ -126,7 +132,11 @@ namespace coshell::driver
     loads_.parse_parameters(prm);
     quantities_.parse_parameters(prm);
     linear_solver_.parse_parameters(prm);
-    nonlinear_.parse_parameters(prm);
+    path_following_.parse_parameters(prm);
+    prm.enter_subsection("Analysis");
+    analysis_type_ = prm.get("Type");
+    prm.leave_subsection();
+    check_analysis_choice();
     output_.parse_parameters(prm);
     solvers::ThreadSettings().parse_parameters(prm);
   }
@@ -153,10 +163,8 @@ namespace coshell::driver
         << model.n_dofs() << " dofs, " << element_.formulation_name()
         << " formulation\n";
 
-    io::LevelResult result =
-        element_.formulation == model::Formulation::linear
-            ? solve_linear(model, constraints, directory, log)
-            : solve_corotational(model, constraints, directory, log);
+    io::LevelResult result = (this->*analyses().at(analysis_type_))(
+        model, constraints, directory, log);
     result.wall_time_s.setup += setup;
     result.wall_time_s.total = seconds_since(start);
     result.level             = level;
@@ -223,91 +231,133 @@ namespace coshell::driver
           csv << name << ',' << factor << ',' << value << '\n';
       io::write_file_atomically(directory + "/reference_points.csv", csv.str());
     }
+
+    std::vector<std::string>
+    with_quantities(std::vector<std::string>             columns,
+                    const std::map<std::string, double> &quantities)
+    {
+      for (const auto &[name, value] : quantities)
+        columns.push_back(name);
+      return columns;
+    }
+  } // namespace
+
+  const std::map<std::string, Scene::AnalysisRunner> &Scene::analyses()
+  {
+    static const std::map<std::string, AnalysisRunner> runners = {
+        {"linear static", &Scene::solve_linear},
+        {"nonlinear static", &Scene::solve_nonlinear_static}};
+    return runners;
+  }
+
+  void Scene::check_analysis_choice() const
+  {
+    if (analysis_type_ == "linear static" &&
+        element_.formulation == model::Formulation::corotational)
+      throw std::invalid_argument(
+          "Analysis/Type = linear static solves the small-displacement "
+          "problem once, but Element/Formulation = corotational asks for "
+          "finite rotations; set Analysis/Type = nonlinear static");
+  }
+
+  namespace
+  {
+    /// The static contributions: internal force and external loads.
+    std::vector<std::unique_ptr<model::Contribution>>
+    static_contributions(const model::ShellModel     &model,
+                         const model::Loads          &loads,
+                         model::Formulation           kinematics,
+                         element::CorotationalTangent tangent,
+                         std::ostream                &log)
+    {
+      std::vector<std::unique_ptr<model::Contribution>> contributions;
+      contributions.push_back(
+          std::make_unique<model::InternalForce>(model, kinematics, tangent));
+      contributions.push_back(std::make_unique<model::ExternalLoads>(
+          model, loads, kinematics == model::Formulation::corotational, log));
+      return contributions;
+    }
+
+    std::string non_symmetric_reason(const model::ShellProblem &problem)
+    {
+      return problem.symmetric_tangent()
+                 ? ""
+                 : "the tangent of this scene (the consistent co-rotational "
+                   "tangent, or a follower pressure)";
+    }
   } // namespace
 
   io::LevelResult
-  Scene::solve_corotational(const model::ShellModel         &model,
-                            const AffineConstraints<double> &constraints,
-                            const std::string               &directory,
-                            std::ostream                    &log)
+  Scene::solve_nonlinear_static(const model::ShellModel         &model,
+                                const AffineConstraints<double> &constraints,
+                                const std::string               &directory,
+                                std::ostream                    &log)
   {
-    io::LevelResult                result;
-    auto                           phase = std::chrono::steady_clock::now();
-    const model::CorotationalModel corotational(model);
-    model::ShellState              state(model);
-    SparsityPattern                sparsity;
-    model.make_sparsity(constraints, sparsity);
-    solvers::LoadPattern loads;
-    loads.dead_load.reinit(model.n_dofs());
-    loads_.assemble(model, loads.dead_load, log, true);
-    loads.follower_pressure  = loads_.follower_pressure();
+    io::LevelResult result;
+    auto            phase = std::chrono::steady_clock::now();
+    const bool      finite =
+        element_.formulation == model::Formulation::corotational;
+    model::ShellState   state(model, finite);
+    model::ShellProblem problem(
+        model, state, constraints,
+        static_contributions(model, loads_, element_.formulation,
+                             path_following_.tangent(), log));
+    linear_solver_.check_applicable(non_symmetric_reason(problem));
+    const auto *internal     = problem.find<model::InternalForce>();
     result.wall_time_s.setup = seconds_since(phase);
 
-    std::filesystem::create_directories(directory);
-    const std::string curve_file   = directory + "/load_displacement.csv";
-    const std::string history_file = directory + "/newton_history.csv";
-    std::ofstream     curve(curve_file + ".partial");
-    std::ofstream     history(history_file + ".partial");
-    curve << "step,load_factor,iterations";
-    for (const auto &[name, value] :
-         quantities_.evaluate(model, state.values()))
-      curve << ',' << name;
-    curve << '\n' << std::setprecision(12);
-
+    io::CsvFile curve(
+        directory + "/load_displacement.csv",
+        with_quantities({"step", "load_factor", "iterations"},
+                        quantities_.evaluate(model, state.values())));
+    io::CsvFile  history(directory + "/newton_history.csv",
+                         {"step", "iteration", "load_factor",
+                          "relative_residual", "correction_norm",
+                          "relative_energy"});
     unsigned int last_written = 0;
-    const auto   observer     = [&](unsigned int step, double load_factor,
-                              unsigned int             iterations,
-                              const model::ShellState &converged)
+    const auto on_step = [&](unsigned int step, double, unsigned int iterations)
     {
-      result.qoi = quantities_.evaluate(model, converged.values());
-      curve << step << ',' << load_factor << ',' << iterations;
+      const double load_factor = problem.load_factor();
+      result.qoi               = quantities_.evaluate(model, state.values());
+      std::vector<double> row = {double(step), load_factor, double(iterations)};
       for (const auto &[name, value] : result.qoi)
-        curve << ',' << value;
-      curve << std::endl;
+        row.push_back(value);
+      curve.row(row);
       log << "  step " << step << ": load factor " << load_factor << ", "
           << iterations << " Newton iterations\n";
       result.load_steps = step;
       result.newton_iterations += iterations;
       if (output_.wants_step(step))
       {
-        output_.write(model, converged.values(),
-                      corotational.resultants(converged), directory,
-                      step_file_name(step), load_factor);
+        output_.write(model, state.values(), internal->resultants(state),
+                      directory, step_file_name(step), load_factor);
         last_written = step;
       }
     };
+    const auto on_iteration =
+        [&](unsigned int step, const solvers::NewtonIteration &record)
+    {
+      history.row({double(step), double(record.iteration),
+                   problem.load_factor(), record.relative_residual,
+                   record.correction_norm, record.relative_energy});
+    };
     phase = std::chrono::steady_clock::now();
-    nonlinear_.run(corotational, state, loads, constraints, sparsity,
-                   linear_solver_, quantities_.reference_load_factors(),
-                   observer, log, history);
+    path_following_.run(problem, linear_solver_,
+                        quantities_.reference_load_factors(), on_step,
+                        on_iteration, log);
     result.wall_time_s.solve = seconds_since(phase);
 
     phase = std::chrono::steady_clock::now();
     if (last_written != result.load_steps)
-      output_.write(model, state.values(), corotational.resultants(state),
-                    directory, step_file_name(result.load_steps), 1.0);
-    curve.close();
-    history.close();
-    std::filesystem::rename(curve_file + ".partial", curve_file);
-    std::filesystem::rename(history_file + ".partial", history_file);
+      output_.write(model, state.values(), internal->resultants(state),
+                    directory, step_file_name(result.load_steps),
+                    problem.load_factor());
+    curve.finish();
+    history.finish();
     if (!quantities_.reference_curves().empty())
-    {
       write_reference_points(quantities_, directory);
-      plot_load_displacement(directory, log);
-    }
     result.wall_time_s.output = seconds_since(phase);
     return result;
-  }
-
-  void Scene::plot_load_displacement(const std::string &directory,
-                                     std::ostream      &log) const
-  {
-    const std::string command = "/usr/bin/python3 " COSHELL_SOURCE_DIR
-                                "/scripts/plot_load_displacement.py '" +
-                                directory + "' > /dev/null 2>&1";
-    if (std::system(command.c_str()) != 0)
-      log << "  note: could not plot load_displacement.png (needs "
-             "/usr/bin/python3 with matplotlib)\n";
   }
 
   io::Json Scene::run(const std::string &output_directory, std::ostream &log)
@@ -334,6 +384,7 @@ namespace coshell::driver
     summary["prm_file"]      = prm_file_;
     summary["commit"]        = git_commit;
     summary["formulation"]   = element_.formulation_name();
+    summary["analysis"]      = analysis_type_;
     summary["element"]       = element_.element_name();
     summary["linear_solver"] = linear_solver_.method();
     summary["threads"]       = solvers::ThreadSettings::n_threads();

@@ -228,6 +228,23 @@ namespace coshell::solvers
       x[i] = solution[i];
   }
 
+  bool LinearSolver::requires_symmetric() const
+  {
+    return method_ == "cg-amg";
+  }
+
+  void
+  LinearSolver::check_applicable(const std::string &why_not_symmetric) const
+  {
+    if (requires_symmetric() && !why_not_symmetric.empty())
+      throw std::invalid_argument(
+          "Linear solver/Method = " + method_ +
+          " (conjugate gradients) needs a symmetric matrix, but " +
+          why_not_symmetric +
+          " is not symmetric; choose cholmod (which falls back to umfpack "
+          "for non-symmetric matrices), umfpack, amesos-klu or amesos-mumps");
+  }
+
   const std::string &LinearSolver::method() const
   {
     return method_;

@@ -53,6 +53,7 @@ def corotational_deflections(args):
     command = [args.coshell, args.prm, "--output", output,
                "--set", f"Mesh/Refinement levels={args.corotational_level}",
                "--set", "Element/Formulation=corotational",
+               "--set", "Analysis/Type=nonlinear static",
                "--set", "Element/Membrane element=cst",
                "--set", "Element/Bending element=dkt",
                "--set", "Loads/Pressure=5",

@@ -9,10 +9,12 @@
 #include <coshell/model/loads.h>
 #include <coshell/model/quantities.h>
 #include <coshell/solvers/linear_solver.h>
-#include <coshell/solvers/nonlinear_static.h>
+#include <coshell/solvers/path_following.h>
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <functional>
+#include <map>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -50,7 +52,8 @@ namespace coshell::driver
     model::Loads                 loads_;
     model::QuantitiesOfInterest  quantities_;
     solvers::LinearSolver        linear_solver_;
-    solvers::NonlinearStatic     nonlinear_;
+    solvers::PathFollowing       path_following_;
+    std::string                  analysis_type_ = "linear static";
     io::VtuOutput                output_;
     std::vector<io::LevelResult> levels_;
 
@@ -63,11 +66,18 @@ namespace coshell::driver
                  const std::string                       &directory,
                  std::ostream                            &log);
     io::LevelResult
-         solve_corotational(const model::ShellModel                 &model,
-                            const dealii::AffineConstraints<double> &constraints,
-                            const std::string                       &directory,
-                            std::ostream                            &log);
-    void plot_load_displacement(const std::string &directory,
-                                std::ostream      &log) const;
+    solve_nonlinear_static(const model::ShellModel                 &model,
+                           const dealii::AffineConstraints<double> &constraints,
+                           const std::string                       &directory,
+                           std::ostream                            &log);
+
+    /// The analyses by their Analysis/Type name.
+    using AnalysisRunner =
+        io::LevelResult (Scene::*)(const model::ShellModel &,
+                                   const dealii::AffineConstraints<double> &,
+                                   const std::string &,
+                                   std::ostream &);
+    static const std::map<std::string, AnalysisRunner> &analyses();
+    void check_analysis_choice() const;
   };
 } // namespace coshell::driver

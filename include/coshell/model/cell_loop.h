@@ -7,6 +7,7 @@
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/vector.h>
 
+#include <array>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -21,7 +22,11 @@ namespace coshell::model
     dealii::Vector<double>                       vector;
     std::vector<dealii::types::global_dof_index> dofs =
         std::vector<dealii::types::global_dof_index>(element::shell_dofs);
-    std::string error;
+    /// The part of 'vector' of each force kind (internal, external,
+    /// inertia): assembled unconstrained, they give the force scale of a
+    /// nonlinear solve and the work of the loads.
+    std::array<std::array<double, element::shell_dofs>, 3> forces_by_kind{};
+    std::string                                            error;
   };
 
   /// Multithreaded loop over the active cells (WorkStream): 'compute(cell,

@@ -36,6 +36,13 @@ namespace coshell::solvers
     /// used by the next factorize().
     void set_near_null_space(const std::vector<dealii::Vector<double>> &modes);
 
+    /// True for methods that cannot solve a non-symmetric system (cg-amg).
+    bool requires_symmetric() const;
+    /// Throws std::invalid_argument, naming the parameter, when the method
+    /// cannot solve the system described by 'why_not_symmetric' (empty when
+    /// the system is symmetric).
+    void check_applicable(const std::string &why_not_symmetric) const;
+
     const std::string &method() const;
     /// Iterations of the last solve (1 for a direct solver).
     unsigned int last_iterations() const;

@@ -1,0 +1,68 @@
+#pragma once
+
+#include <coshell/model/cell_loop.h>
+#include <coshell/model/shell_state.h>
+
+#include <deal.II/lac/vector.h>
+
+#include <string>
+
+namespace coshell::model
+{
+  /// Where the residual is evaluated: the configuration (with its rates in
+  /// dynamics), the time and the load factor, and how the rates depend on
+  /// the increment.
+  struct EvaluationPoint
+  {
+    const ShellState &state;
+    /// Time, s (pseudo-time in statics).
+    double time = 0;
+    /// Dimensionless factor on the external loads.
+    double load_factor = 1;
+    /// d(acceleration)/d(increment), 1/s^2, and d(velocity)/d(increment),
+    /// 1/s, of the time integrator; 0 in statics.
+    double acceleration_coefficient = 0, velocity_coefficient = 0;
+  };
+
+  /// What a force is, for the force scale of Newton's convergence test and
+  /// the energy bookkeeping.
+  enum class ForceKind : unsigned int
+  {
+    internal = 0,
+    external = 1,
+    inertia  = 2
+  };
+
+  /// One physical ingredient of the residual r = f_ext - f_int - f_inertia
+  /// and of its tangent K = -dr/d(increment). An ingredient the scene does
+  /// not switch on is never constructed, so it costs nothing.
+  class Contribution
+  {
+  public:
+    virtual ~Contribution() = default;
+
+    virtual std::string name() const = 0;
+    virtual ForceKind   kind() const = 0;
+
+    /// Whether add_cell() does anything (the cell loop skips it if not).
+    virtual bool has_cell_terms() const = 0;
+    /// Adds this cell's share of r to contribution.vector and, if
+    /// 'with_tangent', of -dr/d(increment) to contribution.matrix (both
+    /// sized 18, kernel DoF order).
+    virtual void add_cell(const CellIterator & /*cell*/,
+                          const EvaluationPoint & /*point*/,
+                          CellContribution & /*contribution*/,
+                          bool /*with_tangent*/) const
+    {
+    }
+
+    /// Adds terms that are not per cell (point and dead loads, which have
+    /// no tangent) to the unconstrained residual.
+    virtual void add_global(const EvaluationPoint & /*point*/,
+                            dealii::Vector<double> & /*residual*/) const
+    {
+    }
+
+    virtual bool symmetric_tangent() const = 0;
+  };
+} // namespace coshell::model

@@ -1,0 +1,122 @@
+#pragma once
+
+#include <coshell/model/contribution.h>
+#include <coshell/model/shell_model.h>
+#include <coshell/model/shell_state.h>
+#include <coshell/solvers/nonlinear_problem.h>
+
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/sparsity_pattern.h>
+
+#include <array>
+#include <functional>
+#include <memory>
+#include <utility>
+#include <vector>
+
+namespace coshell::model
+{
+  /// (DoF, increment still needed to reach its prescribed value) pairs.
+  using PrescribedIncrements =
+      std::vector<std::pair<dealii::types::global_dof_index, double>>;
+  /// Fills the increments that take the prescribed DoFs from 'state' to
+  /// their values at 'time'.
+  using PrescribedIncrementFunction = std::function<void(
+      double time, const ShellState &state, PrescribedIncrements &increments)>;
+
+  /// The shell as a nonlinear problem: the configuration, the constraints
+  /// (supports and prescribed motions) and the sum of the active
+  /// contributions. Prescribed motions enter as inhomogeneous constraints
+  /// while the prescribed DoFs have not reached their values, that is on
+  /// the first Newton iteration of a step (as in deal.II's step-44).
+  class ShellProblem : public solvers::EvolutionProblem
+  {
+  public:
+    /// 'constraints' must be closed and homogeneous, and contain a line for
+    /// every DoF that 'prescribed' may name. 'state' must outlive this.
+    ShellProblem(const ShellModel                          &model,
+                 ShellState                                &state,
+                 const dealii::AffineConstraints<double>   &constraints,
+                 std::vector<std::unique_ptr<Contribution>> contributions,
+                 PrescribedIncrementFunction                prescribed = {});
+
+    /// How the path parameter s of a static stage maps to time and load
+    /// factor: t = start + s * duration, lambda = load_factor(t, s).
+    struct Schedule
+    {
+      double                                start_time = 0, duration = 1;
+      std::function<double(double, double)> load_factor = [](double, double s)
+      { return s; };
+    };
+    void set_schedule(const Schedule &schedule);
+    /// Dynamics: the load factor at time t (defaults to the schedule's).
+    double time() const;
+    double load_factor() const;
+
+    // solvers::NonlinearProblem
+    const dealii::SparsityPattern &sparsity() const override;
+    void                           evaluate(dealii::Vector<double>       &residual,
+                                            dealii::SparseMatrix<double> *tangent) override;
+    double                         force_scale() const override;
+    bool prescribed_increment_pending() const override;
+    void distribute(dealii::Vector<double> &correction) const override;
+    void apply_increment(const dealii::Vector<double> &correction) override;
+    void save() override;
+    void restore() override;
+    bool symmetric_tangent() const override;
+
+    // solvers::EvolutionProblem
+    void set_path_parameter(double s) override;
+    void path_direction(dealii::Vector<double> &direction) override;
+    void set_time(double time) override;
+    void step_increment(dealii::Vector<double> &increment) const override;
+    void set_step_increment(const dealii::Vector<double> &increment) override;
+    dealii::Vector<double> &velocity() override;
+    dealii::Vector<double> &acceleration() override;
+    void set_rate_coefficients(double acceleration_coefficient,
+                               double velocity_coefficient) override;
+    void mass_matrix(dealii::SparseMatrix<double> &mass) override;
+
+    const ShellState                        &state() const;
+    const ShellModel                        &model() const;
+    const dealii::AffineConstraints<double> &constraints() const;
+
+    /// The active contribution of type T, or nullptr.
+    template<typename T>
+    const T *find() const
+    {
+      for (const auto &contribution : contributions_)
+        if (const auto *found = dynamic_cast<const T *>(contribution.get()))
+          return found;
+      return nullptr;
+    }
+
+    /// Unconstrained force of the contributions of one kind at the last
+    /// evaluate() (e.g. the external loads, for the work they do; the
+    /// internal force, whose constrained entries are the reactions).
+    const dealii::Vector<double> &force(ForceKind kind) const;
+
+  private:
+    const ShellModel                          &model_;
+    ShellState                                &state_;
+    dealii::AffineConstraints<double>          constraints_, homogeneous_;
+    std::vector<std::unique_ptr<Contribution>> contributions_;
+    PrescribedIncrementFunction                prescribed_;
+    dealii::SparsityPattern                    sparsity_;
+    Schedule                                   schedule_;
+    double                                     time_ = 0, load_factor_ = 0;
+    double acceleration_coefficient_ = 0, velocity_coefficient_ = 0;
+    std::array<dealii::Vector<double>, 3> forces_;
+    bool                                  pending_ = false;
+    PrescribedIncrements                  increments_;
+    dealii::Vector<double>                global_force_;
+
+    EvaluationPoint point() const;
+    void            update_inhomogeneities();
+    /// Runs the cell terms of the contributions 'use' selects.
+    void assemble(const std::function<bool(const Contribution &)> &use,
+                  const EvaluationPoint                           &at,
+                  dealii::Vector<double>                          *residual,
+                  dealii::SparseMatrix<double>                    *tangent);
+  };
+} // namespace coshell::model

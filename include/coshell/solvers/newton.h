@@ -1,0 +1,123 @@
+#pragma once
+
+#include <coshell/solvers/linear_solver.h>
+#include <coshell/solvers/nonlinear_problem.h>
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <functional>
+#include <stdexcept>
+#include <string>
+
+namespace coshell::solvers
+{
+  /// Thrown when Newton fails (divergence, iteration limit, bad solve), or
+  /// when a step cannot be completed even after cutting it.
+  class NewtonFailure : public std::runtime_error
+  {
+  public:
+    using std::runtime_error::runtime_error;
+  };
+
+  /// x with 6 significant digits, for messages.
+  std::string short_number(double x);
+
+  /// Convergence and line-search settings (prm subsection "Nonlinear
+  /// solver").
+  struct NewtonParameters
+  {
+    unsigned int max_iterations      = 30;
+    double       residual_tolerance  = 1e-7;
+    double       energy_tolerance    = 1e-16;
+    double       increment_tolerance = 1e-8;
+    bool         line_search         = false;
+    /// |r| / scale above this counts as divergence.
+    double divergence_limit = 1e8;
+
+    /// Declares the entries in the current subsection.
+    static void declare_parameters(dealii::ParameterHandler &prm);
+    void        parse_parameters(dealii::ParameterHandler &prm);
+  };
+
+  /// One Newton iteration as the history records it.
+  struct NewtonIteration
+  {
+    unsigned int iteration;
+    double       relative_residual; ///< |r| / force scale
+    double       correction_norm;   ///< 0 on the converged evaluation
+    double       relative_energy;   ///< |du.r| / |du_0.r_0|
+  };
+
+  /// Newton-Raphson on a NonlinearProblem. Knows no physics: it evaluates,
+  /// factorizes, solves, filters the step (line search, admissible
+  /// fraction) and judges convergence against the problem's force scale.
+  class Newton
+  {
+  public:
+    using Observer = std::function<void(const NewtonIteration &)>;
+
+    Newton(const NewtonParameters &parameters, LinearSolver &linear_solver);
+
+    /// Iterates from the problem's current state until converged; returns
+    /// the number of corrections applied. Throws NewtonFailure, leaving the
+    /// problem wherever it got.
+    unsigned int solve(NonlinearProblem &problem,
+                       const Observer   &observer = Observer()) const;
+
+    /// Exactly one correction from the current state, no convergence test
+    /// (the linearized implicit scheme). Returns the relative residual
+    /// before the correction.
+    double single_correction(NonlinearProblem &problem,
+                             const Observer   &observer = Observer()) const;
+
+    const NewtonParameters &parameters() const;
+
+  private:
+    NewtonParameters parameters_;
+    LinearSolver    &linear_solver_;
+
+    /// Factorizes the tangent and solves for the correction (distributed).
+    dealii::Vector<double>
+           correction(NonlinearProblem                   &problem,
+                      const dealii::SparseMatrix<double> &tangent,
+                      const dealii::Vector<double>       &residual) const;
+    double line_search_scale(NonlinearProblem             &problem,
+                             const dealii::Vector<double> &residual,
+                             const dealii::Vector<double> &correction) const;
+  };
+
+  /// Step-size policy shared by load stepping, arc length and time
+  /// stepping: cut a failed step, grow again after easy ones.
+  class StepController
+  {
+  public:
+    struct Settings
+    {
+      double       initial = 0.1, minimum = 1e-9, maximum = 0.1;
+      unsigned int max_consecutive_cuts = 12;
+      /// A step that took at most this many iterations is "easy".
+      unsigned int easy_iterations = 6;
+      double       growth_factor = 2, cut_factor = 0.5;
+    };
+
+    explicit StepController(const Settings &settings);
+
+    /// The next step size to try.
+    double size() const;
+    /// After a converged step that took 'iterations'.
+    void success(unsigned int iterations);
+    /// After a failed attempt of size 'attempted': cuts, or throws
+    /// NewtonFailure "<step> failed after N step cuts: <cause>" once cuts
+    /// run out or the size falls below the minimum.
+    void failure(double             attempted,
+                 const std::string &step,
+                 const std::string &cause);
+    /// Steps cut since the last success.
+    unsigned int consecutive_cuts() const;
+
+  private:
+    Settings     settings_;
+    double       size_;
+    unsigned int cuts_ = 0;
+  };
+} // namespace coshell::solvers

@@ -1,0 +1,100 @@
+#pragma once
+
+#include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/sparsity_pattern.h>
+#include <deal.II/lac/vector.h>
+
+namespace coshell::solvers
+{
+  /// What a Newton solver needs of a nonlinear system r(x) = 0 whose
+  /// unknowns may live on a manifold (rotations): residual and tangent at
+  /// the current iterate, a way to move the iterate, and a force scale to
+  /// judge |r| against. The solver knows nothing else of the physics.
+  class NonlinearProblem
+  {
+  public:
+    virtual ~NonlinearProblem() = default;
+
+    /// Pattern of the tangent (fixed while the problem lives).
+    virtual const dealii::SparsityPattern &sparsity() const = 0;
+
+    /// Residual r (out-of-balance force, condensed with the constraints)
+    /// at the current iterate and, if 'tangent' is given, K = -dr/dx for
+    /// the increment that apply_increment() takes. While a prescribed
+    /// increment of constrained unknowns is pending, the residual contains
+    /// its effect on the free ones (inhomogeneous constraints).
+    virtual void evaluate(dealii::Vector<double>       &residual,
+                          dealii::SparseMatrix<double> *tangent) = 0;
+
+    /// The size of the forces at the last evaluate(), against which |r| is
+    /// measured. It must not vanish when the external load does (a
+    /// displacement-driven stage), e.g. the largest of the internal,
+    /// external and inertia force norms.
+    virtual double force_scale() const = 0;
+
+    /// True while constrained unknowns have not reached their prescribed
+    /// values: Newton must not stop then, whatever the residual.
+    virtual bool prescribed_increment_pending() const
+    {
+      return false;
+    }
+
+    /// Completes a correction solved on the free unknowns: sets the
+    /// constrained entries (slaves and prescribed increments).
+    virtual void distribute(dealii::Vector<double> &correction) const = 0;
+
+    /// x <- x (+) correction (multiplicative on rotations).
+    virtual void apply_increment(const dealii::Vector<double> &correction) = 0;
+
+    /// Largest fraction in (0, 1] of 'correction' that may be applied (a
+    /// collision-free step filter, for instance). Newton scales the whole
+    /// correction, rotations included, by it.
+    virtual double
+    admissible_fraction(const dealii::Vector<double> & /*correction*/) const
+    {
+      return 1.0;
+    }
+
+    /// Keeps a copy of the current iterate; restore() goes back to it.
+    virtual void save()    = 0;
+    virtual void restore() = 0;
+
+    /// Whether the tangent is symmetric (lets a Cholesky solver be used).
+    virtual bool symmetric_tangent() const = 0;
+  };
+} // namespace coshell::solvers
+
+namespace coshell::solvers
+{
+  /// A NonlinearProblem that evolves: along a load path (statics) or in
+  /// time (dynamics). Path following and time integrators drive it through
+  /// this interface and know nothing else of it.
+  class EvolutionProblem : public NonlinearProblem
+  {
+  public:
+    /// Statics: the path parameter s in [0, 1] of the current stage, which
+    /// fixes the time and the load factor.
+    virtual void set_path_parameter(double s) = 0;
+    /// d r / d s at the current iterate, condensed (the arc-length
+    /// method's load direction).
+    virtual void path_direction(dealii::Vector<double> &direction) = 0;
+
+    /// Dynamics: the time the residual is evaluated at, s.
+    virtual void set_time(double time) = 0;
+    /// The step increment since save(), in the tangent space (rotations as
+    /// material rotation vectors), and the way to set it.
+    virtual void step_increment(dealii::Vector<double> &increment) const = 0;
+    virtual void
+    set_step_increment(const dealii::Vector<double> &increment) = 0;
+    /// Rates (velocity, acceleration) in the layout of step increments.
+    virtual dealii::Vector<double> &velocity()     = 0;
+    virtual dealii::Vector<double> &acceleration() = 0;
+    /// How the integrator's rates depend on the increment: d(acceleration)
+    /// / d(increment) and d(velocity) / d(increment).
+    virtual void set_rate_coefficients(double acceleration_coefficient,
+                                       double velocity_coefficient) = 0;
+    /// The mass matrix (inertia tangent with unit acceleration
+    /// coefficient), condensed, to find a consistent initial acceleration.
+    virtual void mass_matrix(dealii::SparseMatrix<double> &mass) = 0;
+  };
+} // namespace coshell::solvers

@@ -1,0 +1,90 @@
+#include <coshell/element/corotational.h>
+#include <coshell/model/external_loads.h>
+#include <coshell/model/internal_force.h>
+
+namespace coshell::model
+{
+  using namespace dealii;
+
+  ExternalLoads::ExternalLoads(const ShellModel &model,
+                               const Loads      &loads,
+                               bool              finite_rotations,
+                               std::ostream     &log)
+      : model_(model), dead_load_(model.n_dofs()),
+        follower_pressure_(finite_rotations ? loads.follower_pressure() : 0)
+  {
+    loads.assemble(model, dead_load_, log, finite_rotations);
+  }
+
+  std::string ExternalLoads::name() const
+  {
+    return "external loads";
+  }
+
+  ForceKind ExternalLoads::kind() const
+  {
+    return ForceKind::external;
+  }
+
+  bool ExternalLoads::has_cell_terms() const
+  {
+    return follower_pressure_ != 0;
+  }
+
+  bool ExternalLoads::symmetric_tangent() const
+  {
+    return follower_pressure_ == 0;
+  }
+
+  void ExternalLoads::add_cell(const CellIterator    &cell,
+                               const EvaluationPoint &point,
+                               CellContribution      &contribution,
+                               bool                   with_tangent) const
+  {
+    const double pressure =
+        point.load_factor * follower_pressure_ * model_.normal_sign(cell);
+    if (pressure == 0)
+      return;
+    std::array<double, 9> force;
+    FullMatrix<double>    stiffness(9, 9);
+    element::follower_pressure(current_triangle(model_, cell, point.state),
+                               pressure, force,
+                               with_tangent ? &stiffness : nullptr);
+    // Translations only: node a, direction i -> element DoF 6a + i.
+    for (unsigned int a = 0; a < 9; ++a)
+    {
+      const unsigned int row = 6 * (a / 3) + a % 3;
+      contribution.vector[row] += force[a];
+      if (with_tangent)
+        for (unsigned int b = 0; b < 9; ++b)
+          contribution.matrix(row, 6 * (b / 3) + b % 3) -= stiffness(a, b);
+    }
+  }
+
+  void ExternalLoads::add_global(const EvaluationPoint &point,
+                                 Vector<double>        &residual) const
+  {
+    residual.add(point.load_factor, dead_load_);
+  }
+
+  void ExternalLoads::load_vector(const ShellState &state,
+                                  Vector<double>   &load) const
+  {
+    load = dead_load_;
+    if (follower_pressure_ == 0)
+      return;
+    const EvaluationPoint unit{state, 0, 1};
+    for_each_cell(
+        model_.dof_handler(),
+        [&](const CellIterator &cell, CellContribution &contribution)
+        {
+          contribution.vector.reinit(element::shell_dofs);
+          add_cell(cell, unit, contribution, false);
+        },
+        [&](const CellContribution &contribution)
+        {
+          for (unsigned int i = 0; i < element::shell_dofs; ++i)
+            load[contribution.dofs[i]] += contribution.vector[i];
+        });
+  }
+} // namespace coshell::model

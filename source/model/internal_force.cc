@@ -1,0 +1,132 @@
+#include <coshell/model/internal_force.h>
+
+namespace coshell::model
+{
+  using namespace dealii;
+
+  element::SpatialTriangle current_triangle(const ShellModel   &model,
+                                            const CellIterator &cell,
+                                            const ShellState   &state)
+  {
+    element::SpatialTriangle current = model.triangle(cell);
+    for (unsigned int v = 0; v < 3; ++v)
+      for (unsigned int d = 0; d < 3; ++d)
+        current[v][d] += state.values()[cell->vertex_dof_index(v, ux + d)];
+    return current;
+  }
+
+  InternalForce::InternalForce(const ShellModel            &model,
+                               Formulation                  kinematics,
+                               element::CorotationalTangent tangent)
+      : model_(model), kinematics_(kinematics), tangent_(tangent)
+  {
+    if (kinematics_ != Formulation::corotational)
+      return;
+    const auto &parameters = model.element_parameters();
+    corotational_.reserve(model.surface().n_active_cells());
+    for (const auto &cell : model.dof_handler().active_cell_iterators())
+      corotational_.emplace_back(model.triangle(cell), parameters.material,
+                                 parameters.options);
+  }
+
+  std::string InternalForce::name() const
+  {
+    return "internal force";
+  }
+
+  ForceKind InternalForce::kind() const
+  {
+    return ForceKind::internal;
+  }
+
+  bool InternalForce::has_cell_terms() const
+  {
+    return true;
+  }
+
+  bool InternalForce::symmetric_tangent() const
+  {
+    return kinematics_ == Formulation::linear ||
+           tangent_ == element::CorotationalTangent::paper;
+  }
+
+  element::NodalRotations
+  InternalForce::nodal_rotations(const CellIterator &cell,
+                                 const ShellState   &state) const
+  {
+    return {{state.rotation(cell->vertex_index(0)),
+             state.rotation(cell->vertex_index(1)),
+             state.rotation(cell->vertex_index(2))}};
+  }
+
+  void InternalForce::add_cell(const CellIterator    &cell,
+                               const EvaluationPoint &point,
+                               CellContribution      &contribution,
+                               bool                   with_tangent) const
+  {
+    if (kinematics_ == Formulation::linear)
+    {
+      const auto              &parameters = model_.element_parameters();
+      const FullMatrix<double> stiffness  = element::shell_stiffness(
+           model_.triangle(cell), parameters.material, parameters.options);
+      const auto u = model_.cell_values(cell, point.state.values());
+      for (unsigned int i = 0; i < element::shell_dofs; ++i)
+        for (unsigned int j = 0; j < element::shell_dofs; ++j)
+          contribution.vector[i] -= stiffness(i, j) * u[j];
+      if (with_tangent)
+        contribution.matrix.add(1.0, stiffness);
+      return;
+    }
+    element::ShellDisplacements force;
+    FullMatrix<double>          tangent;
+    corotational_[cell->active_cell_index()].internal_force(
+        current_triangle(model_, cell, point.state),
+        nodal_rotations(cell, point.state), tangent_, force,
+        with_tangent ? &tangent : nullptr);
+    for (unsigned int i = 0; i < element::shell_dofs; ++i)
+      contribution.vector[i] -= force[i];
+    if (with_tangent)
+      contribution.matrix.add(1.0, tangent);
+  }
+
+  double InternalForce::cell_energy(const CellIterator &cell,
+                                    const ShellState   &state) const
+  {
+    if (kinematics_ == Formulation::corotational)
+      return corotational_[cell->active_cell_index()].energy(
+          current_triangle(model_, cell, state), nodal_rotations(cell, state));
+    const auto              &parameters = model_.element_parameters();
+    const FullMatrix<double> stiffness  = element::shell_stiffness(
+         model_.triangle(cell), parameters.material, parameters.options);
+    const auto u      = model_.cell_values(cell, state.values());
+    double     energy = 0;
+    for (unsigned int i = 0; i < element::shell_dofs; ++i)
+      for (unsigned int j = 0; j < element::shell_dofs; ++j)
+        energy += 0.5 * u[i] * stiffness(i, j) * u[j];
+    return energy;
+  }
+
+  double InternalForce::strain_energy(const ShellState &state) const
+  {
+    double energy = 0;
+    for (const auto &cell : model_.dof_handler().active_cell_iterators())
+      energy += cell_energy(cell, state);
+    return energy;
+  }
+
+  std::vector<element::ShellResultants>
+  InternalForce::resultants(const ShellState &state) const
+  {
+    if (kinematics_ == Formulation::linear)
+      return model_.resultants(state.values());
+    std::vector<element::ShellResultants> result(corotational_.size());
+    for (const auto &cell : model_.dof_handler().active_cell_iterators())
+    {
+      auto &r = result[cell->active_cell_index()];
+      r       = corotational_[cell->active_cell_index()].resultants(
+                current_triangle(model_, cell, state), nodal_rotations(cell, state));
+      model_.orient_moments(cell, r);
+    }
+    return result;
+  }
+} // namespace coshell::model

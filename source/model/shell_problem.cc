@@ -1,0 +1,289 @@
+#include <coshell/model/shell_problem.h>
+
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+
+#include <cmath>
+
+namespace coshell::model
+{
+  using namespace dealii;
+
+  ShellProblem::ShellProblem(
+      const ShellModel                          &model,
+      ShellState                                &state,
+      const AffineConstraints<double>           &constraints,
+      std::vector<std::unique_ptr<Contribution>> contributions,
+      PrescribedIncrementFunction                prescribed)
+      : model_(model), state_(state), contributions_(std::move(contributions)),
+        prescribed_(std::move(prescribed))
+  {
+    constraints_.copy_from(constraints);
+    homogeneous_.copy_from(constraints);
+    model_.make_sparsity(homogeneous_, sparsity_);
+    for (auto &force : forces_)
+      force.reinit(model_.n_dofs());
+    global_force_.reinit(model_.n_dofs());
+    set_path_parameter(0);
+  }
+
+  void ShellProblem::set_schedule(const Schedule &schedule)
+  {
+    schedule_ = schedule;
+  }
+
+  double ShellProblem::time() const
+  {
+    return time_;
+  }
+
+  double ShellProblem::load_factor() const
+  {
+    return load_factor_;
+  }
+
+  const SparsityPattern &ShellProblem::sparsity() const
+  {
+    return sparsity_;
+  }
+
+  EvaluationPoint ShellProblem::point() const
+  {
+    return {state_, time_, load_factor_, acceleration_coefficient_,
+            velocity_coefficient_};
+  }
+
+  /// Sets each prescribed DoF's inhomogeneity to the increment it still
+  /// needs; after the correction that realises it, that is round-off.
+  void ShellProblem::update_inhomogeneities()
+  {
+    pending_ = false;
+    if (!prescribed_)
+      return;
+    increments_.clear();
+    prescribed_(time_, state_, increments_);
+    for (const auto &[dof, increment] : increments_)
+    {
+      constraints_.set_inhomogeneity(dof, increment);
+      const double size = std::max(1.0, std::abs(state_.values()[dof]));
+      if (std::abs(increment) > 1e-12 * size)
+        pending_ = true;
+    }
+  }
+
+  void
+  ShellProblem::assemble(const std::function<bool(const Contribution &)> &use,
+                         const EvaluationPoint                           &at,
+                         Vector<double>       *residual,
+                         SparseMatrix<double> *tangent)
+  {
+    std::vector<const Contribution *> active;
+    for (const auto &contribution : contributions_)
+      if (use(*contribution) && contribution->has_cell_terms())
+        active.push_back(contribution.get());
+    if (active.empty())
+      return;
+    const bool with_tangent = tangent != nullptr;
+    for_each_cell(
+        model_.dof_handler(),
+        [&](const CellIterator &cell, CellContribution &copy)
+        {
+          copy.vector.reinit(element::shell_dofs);
+          if (with_tangent)
+            copy.matrix.reinit(element::shell_dofs, element::shell_dofs);
+          for (auto &part : copy.forces_by_kind)
+            part.fill(0);
+          std::array<double, element::shell_dofs> before;
+          for (const Contribution *contribution : active)
+          {
+            std::copy(copy.vector.begin(), copy.vector.end(), before.begin());
+            contribution->add_cell(cell, at, copy, with_tangent);
+            auto &part = copy.forces_by_kind[static_cast<unsigned int>(
+                contribution->kind())];
+            for (unsigned int i = 0; i < element::shell_dofs; ++i)
+              part[i] += copy.vector[i] - before[i];
+          }
+        },
+        [&](const CellContribution &copy)
+        {
+          for (unsigned int k = 0; k < 3; ++k)
+            for (unsigned int i = 0; i < element::shell_dofs; ++i)
+              forces_[k][copy.dofs[i]] += copy.forces_by_kind[k][i];
+          if (with_tangent && residual)
+            constraints_.distribute_local_to_global(
+                copy.matrix, copy.vector, copy.dofs, *tangent, *residual);
+          else if (with_tangent)
+            constraints_.distribute_local_to_global(copy.matrix, copy.dofs,
+                                                    *tangent);
+          else
+            constraints_.distribute_local_to_global(copy.vector, copy.dofs,
+                                                    *residual);
+        });
+  }
+
+  void ShellProblem::evaluate(Vector<double>       &residual,
+                              SparseMatrix<double> *tangent)
+  {
+    update_inhomogeneities();
+    residual = 0;
+    if (tangent)
+      *tangent = 0;
+    for (auto &force : forces_)
+      force = 0;
+    const EvaluationPoint at = point();
+    assemble([](const Contribution &) { return true; }, at, &residual, tangent);
+    global_force_ = 0;
+    for (const auto &contribution : contributions_)
+    {
+      Vector<double> &force =
+          forces_[static_cast<unsigned int>(contribution->kind())];
+      const Vector<double> before(force);
+      contribution->add_global(at, force);
+      global_force_ += force;
+      global_force_ -= before;
+    }
+    homogeneous_.condense(global_force_);
+    residual += global_force_;
+  }
+
+  double ShellProblem::force_scale() const
+  {
+    double scale = 0;
+    for (const auto &force : forces_)
+      scale = std::max(scale, force.l2_norm());
+    return scale;
+  }
+
+  const Vector<double> &ShellProblem::force(ForceKind kind) const
+  {
+    return forces_[static_cast<unsigned int>(kind)];
+  }
+
+  bool ShellProblem::prescribed_increment_pending() const
+  {
+    return pending_;
+  }
+
+  void ShellProblem::distribute(Vector<double> &correction) const
+  {
+    constraints_.distribute(correction);
+  }
+
+  void ShellProblem::apply_increment(const Vector<double> &correction)
+  {
+    state_.apply_increment(correction);
+  }
+
+  void ShellProblem::save()
+  {
+    state_.save();
+  }
+
+  void ShellProblem::restore()
+  {
+    state_.restore();
+  }
+
+  bool ShellProblem::symmetric_tangent() const
+  {
+    for (const auto &contribution : contributions_)
+      if (!contribution->symmetric_tangent())
+        return false;
+    return true;
+  }
+
+  void ShellProblem::set_path_parameter(double s)
+  {
+    time_        = schedule_.start_time + s * schedule_.duration;
+    load_factor_ = schedule_.load_factor(time_, s);
+  }
+
+  void ShellProblem::path_direction(Vector<double> &direction)
+  {
+    // d lambda / d s by central differences of the schedule (exact for the
+    // linear ramps the arc-length method is used with).
+    const double s  = schedule_.duration > 0
+                          ? (time_ - schedule_.start_time) / schedule_.duration
+                          : 0;
+    const double ds = 1e-6;
+    const double slope =
+        (schedule_.load_factor(time_ + ds * schedule_.duration, s + ds) -
+         schedule_.load_factor(time_ - ds * schedule_.duration, s - ds)) /
+        (2 * ds);
+    direction.reinit(model_.n_dofs());
+    Vector<double>        unit_load(model_.n_dofs());
+    const EvaluationPoint at{state_, time_, 1.0, 0, 0};
+    for (const auto &contribution : contributions_)
+      if (contribution->kind() == ForceKind::external)
+        contribution->add_global(at, unit_load);
+    assemble([](const Contribution &c)
+             { return c.kind() == ForceKind::external; },
+             at, &unit_load, nullptr);
+    homogeneous_.condense(unit_load);
+    direction.equ(slope, unit_load);
+  }
+
+  void ShellProblem::set_time(double time)
+  {
+    time_          = time;
+    const double s = schedule_.duration > 0
+                         ? (time - schedule_.start_time) / schedule_.duration
+                         : 0;
+    load_factor_   = schedule_.load_factor(time, s);
+  }
+
+  void ShellProblem::step_increment(Vector<double> &increment) const
+  {
+    state_.step_increment(increment);
+  }
+
+  void ShellProblem::set_step_increment(const Vector<double> &increment)
+  {
+    state_.set_step_increment(increment);
+  }
+
+  Vector<double> &ShellProblem::velocity()
+  {
+    return state_.velocity();
+  }
+
+  Vector<double> &ShellProblem::acceleration()
+  {
+    return state_.acceleration();
+  }
+
+  void ShellProblem::set_rate_coefficients(double acceleration_coefficient,
+                                           double velocity_coefficient)
+  {
+    acceleration_coefficient_ = acceleration_coefficient;
+    velocity_coefficient_     = velocity_coefficient;
+  }
+
+  void ShellProblem::mass_matrix(SparseMatrix<double> &mass)
+  {
+    mass                        = 0;
+    EvaluationPoint at          = point();
+    at.acceleration_coefficient = 1;
+    at.velocity_coefficient     = 0;
+    for (auto &force : forces_)
+      force = 0;
+    Vector<double> unused(model_.n_dofs());
+    assemble([](const Contribution &c)
+             { return c.kind() == ForceKind::inertia; },
+             at, &unused, &mass);
+  }
+
+  const ShellState &ShellProblem::state() const
+  {
+    return state_;
+  }
+
+  const ShellModel &ShellProblem::model() const
+  {
+    return model_;
+  }
+
+  const AffineConstraints<double> &ShellProblem::constraints() const
+  {
+    return homogeneous_;
+  }
+} // namespace coshell::model

@@ -1,0 +1,235 @@
+#include <coshell/solvers/newton.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+namespace coshell::solvers
+{
+  using namespace dealii;
+
+  std::string short_number(double x)
+  {
+    std::ostringstream out;
+    out << std::setprecision(6) << x;
+    return out.str();
+  }
+
+  namespace
+  {
+    bool is_finite(const Vector<double> &v)
+    {
+      return std::all_of(v.begin(), v.end(),
+                         [](double x) { return std::isfinite(x); });
+    }
+  } // namespace
+
+  void NewtonParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.declare_entry("Maximum iterations", "30", Patterns::Integer(1),
+                      "Newton iterations per attempt of a step "
+                      "(dimensionless).");
+    prm.declare_entry(
+        "Residual tolerance", "1e-7", Patterns::Double(0),
+        "Dimensionless. Newton has converged when |r| <= tol * F, F the "
+        "largest of the internal, external and inertia force norms (so a "
+        "displacement-driven step with no external load is judged too), or "
+        "when both Energy and Increment tolerances are met.");
+    prm.declare_entry("Energy tolerance", "1e-16", Patterns::Double(0),
+                      "Dimensionless: |du.r| <= tol |du_0.r_0|, the energy of "
+                      "the last correction relative to the first of the "
+                      "step.");
+    prm.declare_entry("Increment tolerance", "1e-8", Patterns::Double(0),
+                      "Dimensionless: |du| <= tol |sum of corrections in the "
+                      "step|.");
+    prm.declare_entry("Line search", "false", Patterns::Bool(),
+                      "Scale each Newton correction du by s so that "
+                      "|du.r(s du)| <= 0.8 |du.r(0)| (secant steps on the "
+                      "energy slope, Crisfield 1991). Off by default: on "
+                      "large-rotation steps the full Newton step, though it "
+                      "raises the residual at first, converges faster.");
+    prm.declare_entry("Divergence limit", "1e8", Patterns::Double(1),
+                      "Dimensionless: a relative residual |r|/F above this "
+                      "ends the attempt as diverged.");
+  }
+
+  void NewtonParameters::parse_parameters(ParameterHandler &prm)
+  {
+    max_iterations      = prm.get_integer("Maximum iterations");
+    residual_tolerance  = prm.get_double("Residual tolerance");
+    energy_tolerance    = prm.get_double("Energy tolerance");
+    increment_tolerance = prm.get_double("Increment tolerance");
+    line_search         = prm.get_bool("Line search");
+    divergence_limit    = prm.get_double("Divergence limit");
+  }
+
+  Newton::Newton(const NewtonParameters &parameters,
+                 LinearSolver           &linear_solver)
+      : parameters_(parameters), linear_solver_(linear_solver)
+  {
+  }
+
+  const NewtonParameters &Newton::parameters() const
+  {
+    return parameters_;
+  }
+
+  Vector<double> Newton::correction(NonlinearProblem           &problem,
+                                    const SparseMatrix<double> &tangent,
+                                    const Vector<double>       &residual) const
+  {
+    linear_solver_.factorize(tangent, problem.symmetric_tangent());
+    Vector<double> x(residual.size());
+    linear_solver_.solve(x, residual);
+    problem.distribute(x);
+    if (!is_finite(x))
+      throw NewtonFailure("the linear solve gave non-finite values");
+    return x;
+  }
+
+  /// Crisfield's line search on the energy slope s(a) = du . r(x + a du):
+  /// accept a when |s(a)| <= 0.8 |s(0)|, else take secant steps towards
+  /// s = 0, keeping a in [0.1, 1]. Each trial is undone by the opposite
+  /// increment, which is exact on rotations too (exp(-w) exp(w) = I).
+  double Newton::line_search_scale(NonlinearProblem     &problem,
+                                   const Vector<double> &residual,
+                                   const Vector<double> &correction) const
+  {
+    const double   slope_at_zero = correction * residual;
+    double         a_low = 0, s_low = slope_at_zero, a = 1;
+    Vector<double> trial_residual(residual.size()), step(correction.size());
+    for (unsigned int trial = 0; trial < 4; ++trial)
+    {
+      step.equ(a, correction);
+      problem.apply_increment(step);
+      problem.evaluate(trial_residual, nullptr);
+      step *= -1;
+      problem.apply_increment(step);
+      const double slope = correction * trial_residual;
+      if (!std::isfinite(slope))
+      {
+        a = 0.5 * (a_low + a);
+        continue;
+      }
+      if (std::abs(slope) <= 0.8 * std::abs(slope_at_zero))
+        return a;
+      const double secant = a_low + (a - a_low) * s_low / (s_low - slope);
+      a_low               = a;
+      s_low               = slope;
+      a = std::clamp(std::isfinite(secant) ? secant : 1.0, 0.1, 1.0);
+    }
+    return a;
+  }
+
+  unsigned int Newton::solve(NonlinearProblem &problem,
+                             const Observer   &observer) const
+  {
+    SparseMatrix<double> tangent(problem.sparsity());
+    Vector<double>       residual(problem.sparsity().n_rows());
+    Vector<double>       step_increment(residual.size());
+    double               first_energy     = 0;
+    bool                 correction_small = false;
+    for (unsigned int iteration = 0;; ++iteration)
+    {
+      problem.evaluate(residual, &tangent);
+      const double relative_residual =
+          residual.l2_norm() / std::max(problem.force_scale(), 1e-300);
+      if (!std::isfinite(relative_residual) ||
+          relative_residual > parameters_.divergence_limit)
+        throw NewtonFailure("Newton diverged (relative residual " +
+                            short_number(relative_residual) + ")");
+      // Converged when the residual is small, or when the last correction
+      // has dropped to round-off in both norm and energy: very stiff
+      // membranes leave a round-off floor in the residual.
+      if (!problem.prescribed_increment_pending() &&
+          (relative_residual <= parameters_.residual_tolerance ||
+           correction_small))
+      {
+        if (observer)
+          observer({iteration, relative_residual, 0, 0});
+        return iteration;
+      }
+      if (iteration == parameters_.max_iterations)
+        throw NewtonFailure("Newton did not converge in " +
+                            std::to_string(parameters_.max_iterations) +
+                            " iterations (relative residual " +
+                            short_number(relative_residual) + ")");
+      Vector<double> du     = correction(problem, tangent, residual);
+      const double   energy = std::abs(du * residual);
+      if (iteration == 0)
+        first_energy = std::max(energy, 1e-300);
+      if (parameters_.line_search)
+        du *= line_search_scale(problem, residual, du);
+      const double fraction = problem.admissible_fraction(du);
+      if (fraction < 1)
+        du *= fraction;
+      problem.apply_increment(du);
+      step_increment += du;
+      if (observer)
+        observer({iteration, relative_residual, du.l2_norm(),
+                  energy / first_energy});
+      correction_small =
+          energy <= parameters_.energy_tolerance * first_energy &&
+          du.l2_norm() <= parameters_.increment_tolerance *
+                              std::max(step_increment.l2_norm(), 1e-300);
+    }
+  }
+
+  double Newton::single_correction(NonlinearProblem &problem,
+                                   const Observer   &observer) const
+  {
+    SparseMatrix<double> tangent(problem.sparsity());
+    Vector<double>       residual(problem.sparsity().n_rows());
+    problem.evaluate(residual, &tangent);
+    const double relative_residual =
+        residual.l2_norm() / std::max(problem.force_scale(), 1e-300);
+    if (!std::isfinite(relative_residual))
+      throw NewtonFailure("non-finite residual");
+    Vector<double> du       = correction(problem, tangent, residual);
+    const double   fraction = problem.admissible_fraction(du);
+    if (fraction < 1)
+      du *= fraction;
+    problem.apply_increment(du);
+    if (observer)
+      observer({0, relative_residual, du.l2_norm(), 1});
+    return relative_residual;
+  }
+
+  StepController::StepController(const Settings &settings)
+      : settings_(settings), size_(settings.initial)
+  {
+  }
+
+  double StepController::size() const
+  {
+    return size_;
+  }
+
+  unsigned int StepController::consecutive_cuts() const
+  {
+    return cuts_;
+  }
+
+  void StepController::success(unsigned int iterations)
+  {
+    cuts_ = 0;
+    if (iterations <= settings_.easy_iterations)
+      size_ = std::min(settings_.maximum, settings_.growth_factor * size_);
+  }
+
+  void StepController::failure(double             attempted,
+                               const std::string &step,
+                               const std::string &cause)
+  {
+    if (++cuts_ > settings_.max_consecutive_cuts)
+      throw NewtonFailure(step + " failed after " +
+                          std::to_string(settings_.max_consecutive_cuts) +
+                          " step cuts: " + cause);
+    size_ = settings_.cut_factor * attempted;
+    if (size_ < settings_.minimum)
+      throw NewtonFailure(step + " failed: the step size " + short_number(size_) +
+                          " fell below its minimum " +
+                          short_number(settings_.minimum) + ": " + cause);
+  }
+} // namespace coshell::solvers

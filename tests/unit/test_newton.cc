@@ -1,0 +1,269 @@
+// The physics-free Newton solver and step controller on small algebraic
+// problems with known solutions.
+
+#include <coshell/solvers/newton.h>
+
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+namespace
+{
+  using namespace dealii;
+  using coshell::solvers::LinearSolver;
+  using coshell::solvers::Newton;
+  using coshell::solvers::NewtonFailure;
+  using coshell::solvers::NewtonIteration;
+  using coshell::solvers::NewtonParameters;
+  using coshell::solvers::NonlinearProblem;
+  using coshell::solvers::StepController;
+
+  /// r_i(x) = load_i - (k x_i + c x_i^3) - coupling (x_i - x_j), i != j;
+  /// unknown 'fixed' (if any) is prescribed to 'prescribed_value' through
+  /// the pending-increment mechanism.
+  class CubicSprings : public NonlinearProblem
+  {
+  public:
+    CubicSprings(std::vector<double> load,
+                 double              c,
+                 int                 fixed            = -1,
+                 double              prescribed_value = 0)
+        : load_(std::move(load)), c_(c), fixed_(fixed),
+          prescribed_(prescribed_value), x_(load_.size()), saved_(x_)
+    {
+      DynamicSparsityPattern dsp(x_.size(), x_.size());
+      for (unsigned int i = 0; i < x_.size(); ++i)
+        for (unsigned int j = 0; j < x_.size(); ++j)
+          dsp.add(i, j);
+      pattern_.copy_from(dsp);
+    }
+
+    const SparsityPattern &sparsity() const override
+    {
+      return pattern_;
+    }
+
+    void evaluate(Vector<double> &r, SparseMatrix<double> *K) override
+    {
+      scale_ = 0;
+      for (unsigned int i = 0; i < x_.size(); ++i)
+      {
+        const double internal = x_[i] + c_ * std::pow(x_[i], 3) +
+                                coupling * (x_.size() * x_[i] - sum());
+        r[i]   = load_[i] - internal;
+        scale_ = std::max({scale_, std::abs(internal), std::abs(load_[i])});
+        if (K)
+          for (unsigned int j = 0; j < x_.size(); ++j)
+            K->set(i, j,
+                   (i == j ? 1 + 3 * c_ * x_[i] * x_[i] + coupling : 0) -
+                       (i == j ? 0 : coupling));
+      }
+      if (fixed_ >= 0)
+      {
+        // Constrained row: identity, residual = remaining increment.
+        r[fixed_] = 0;
+        if (K)
+          for (unsigned int j = 0; j < x_.size(); ++j)
+            K->set(fixed_, j, fixed_ == int(j) ? 1 : 0);
+      }
+      ++evaluations;
+    }
+
+    double force_scale() const override
+    {
+      return scale_;
+    }
+
+    bool prescribed_increment_pending() const override
+    {
+      return fixed_ >= 0 && std::abs(x_[fixed_] - prescribed_) > 1e-14;
+    }
+
+    void distribute(Vector<double> &dx) const override
+    {
+      if (fixed_ >= 0)
+        dx[fixed_] = prescribed_ - x_[fixed_];
+    }
+
+    void apply_increment(const Vector<double> &dx) override
+    {
+      x_ += dx;
+    }
+
+    void save() override
+    {
+      saved_ = x_;
+    }
+
+    void restore() override
+    {
+      x_ = saved_;
+    }
+
+    bool symmetric_tangent() const override
+    {
+      return true;
+    }
+
+    const Vector<double> &x() const
+    {
+      return x_;
+    }
+
+    double       coupling    = 0;
+    unsigned int evaluations = 0;
+
+  private:
+    double sum() const
+    {
+      double s = 0;
+      for (const double xi : x_)
+        s += xi;
+      return s; // n x_i - sum_j x_j: springs between every pair
+    }
+
+    std::vector<double> load_;
+    double              c_;
+    int                 fixed_;
+    double              prescribed_;
+    Vector<double>      x_, saved_;
+    SparsityPattern     pattern_;
+    double              scale_ = 0;
+  };
+
+  LinearSolver &umfpack()
+  {
+    static LinearSolver solver;
+    ParameterHandler    prm;
+    LinearSolver::declare_parameters(prm);
+    prm.enter_subsection("Linear solver");
+    prm.set("Method", "umfpack");
+    prm.leave_subsection();
+    solver.parse_parameters(prm);
+    return solver;
+  }
+
+  double cubic_root(double load, double c)
+  {
+    // x + c x^3 = load by bisection (independent of Newton).
+    double low = -std::abs(load) - 1, high = std::abs(load) + 1;
+    for (int i = 0; i < 200; ++i)
+    {
+      const double mid                                = 0.5 * (low + high);
+      (mid + c * mid * mid * mid < load ? low : high) = mid;
+    }
+    return 0.5 * (low + high);
+  }
+} // namespace
+
+TEST(Newton, SolvesUncoupledCubicsToTheBisectionRoot)
+{
+  CubicSprings           problem({2.0, -5.0}, 0.5);
+  const NewtonParameters parameters;
+  Newton                 newton(parameters, umfpack());
+  std::vector<double>    residuals;
+  const unsigned int     iterations =
+      newton.solve(problem, [&](const NewtonIteration &record)
+                   { residuals.push_back(record.relative_residual); });
+  EXPECT_NEAR(problem.x()[0], cubic_root(2.0, 0.5), 1e-9);
+  EXPECT_NEAR(problem.x()[1], cubic_root(-5.0, 0.5), 1e-9);
+  EXPECT_LE(iterations, 8u);
+  // Quadratic convergence: r_{k+1} <= C r_k^2 in the last steps.
+  ASSERT_GE(residuals.size(), 3u);
+  const std::size_t n = residuals.size();
+  const double order  = std::log(residuals[n - 1]) / std::log(residuals[n - 2]);
+  EXPECT_GT(order, 1.8);
+}
+
+TEST(Newton, ConvergesWhenTheExternalLoadIsZero)
+{
+  // Displacement-driven: no load, unknown 0 prescribed to 1.5, unknown 1
+  // coupled to it. The force scale is the internal force, so the first
+  // iteration is not counted as diverged.
+  CubicSprings problem({0.0, 0.0}, 0.2, 0, 1.5);
+  problem.coupling = 3;
+  NewtonParameters parameters;
+  parameters.residual_tolerance = 1e-12;
+  Newton             newton(parameters, umfpack());
+  const unsigned int iterations = newton.solve(problem);
+  EXPECT_NEAR(problem.x()[0], 1.5, 1e-14);
+  // Row 1: -(x1 + c x1^3 + 3 (x1 - x0)) = 0.
+  const double x1 = problem.x()[1];
+  EXPECT_NEAR(x1 + 0.2 * x1 * x1 * x1 + 3 * (x1 - 1.5), 0, 1e-8);
+  EXPECT_GE(iterations, 2u);
+}
+
+TEST(Newton, DoesNotStopWhilePrescribedIncrementIsPending)
+{
+  // Zero residual everywhere at the start, but the prescribed unknown has
+  // not moved yet: Newton must take at least one correction.
+  CubicSprings problem({0.0}, 0.0, 0, 2.0);
+  Newton       newton(NewtonParameters(), umfpack());
+  EXPECT_GE(newton.solve(problem), 1u);
+  EXPECT_NEAR(problem.x()[0], 2.0, 1e-14);
+}
+
+TEST(Newton, ReportsDivergenceAndIterationLimit)
+{
+  CubicSprings     problem({1e6}, 1.0);
+  NewtonParameters parameters;
+  parameters.max_iterations = 2;
+  Newton newton(parameters, umfpack());
+  EXPECT_THROW(newton.solve(problem), NewtonFailure);
+}
+
+TEST(Newton, SingleCorrectionIsOneLinearSolve)
+{
+  // On a linear problem one correction is exact.
+  CubicSprings problem({3.0, -1.0}, 0.0);
+  Newton       newton(NewtonParameters(), umfpack());
+  newton.single_correction(problem);
+  EXPECT_NEAR(problem.x()[0], 3.0, 1e-14);
+  EXPECT_NEAR(problem.x()[1], -1.0, 1e-14);
+}
+
+TEST(Newton, LineSearchLeavesTheIterateUnchangedBetweenTrials)
+{
+  CubicSprings     problem({50.0}, 1.0);
+  NewtonParameters parameters;
+  parameters.line_search        = true;
+  parameters.residual_tolerance = 1e-12;
+  Newton newton(parameters, umfpack());
+  newton.solve(problem);
+  EXPECT_NEAR(problem.x()[0], cubic_root(50.0, 1.0), 1e-9);
+}
+
+TEST(StepController, CutsGrowsAndGivesUp)
+{
+  StepController control({0.25, 0.01, 0.25, 2, 6, 2, 0.5});
+  EXPECT_DOUBLE_EQ(control.size(), 0.25);
+  control.failure(0.25, "step", "no");
+  EXPECT_DOUBLE_EQ(control.size(), 0.125);
+  control.success(3);
+  EXPECT_DOUBLE_EQ(control.size(), 0.25); // grown, capped at the maximum
+  control.failure(0.25, "step", "no");
+  control.success(10); // hard step: no growth
+  EXPECT_DOUBLE_EQ(control.size(), 0.125);
+  control.failure(0.125, "step", "no");
+  control.failure(0.0625, "step", "no");
+  try
+  {
+    control.failure(0.03125, "step from 0 to 1", "cause");
+    FAIL() << "a third consecutive cut must throw";
+  }
+  catch (const NewtonFailure &failure)
+  {
+    EXPECT_EQ(std::string(failure.what()),
+              "step from 0 to 1 failed after 2 step cuts: cause");
+  }
+}
+
+TEST(StepController, StopsBelowTheMinimumStep)
+{
+  StepController control({0.1, 0.04, 0.1, 10, 6, 2, 0.5});
+  control.failure(0.1, "step", "cause");
+  EXPECT_THROW(control.failure(0.05, "step", "cause"), NewtonFailure);
+}
