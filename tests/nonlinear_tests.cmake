@@ -110,3 +110,33 @@ coshell_bad_input_test(corotational_linear_static "Analysis/Type = linear static
   ${COSHELL_PRM}/benchmarks/cantilever_end_moment.prm --set "Analysis/Type=linear static")
 coshell_bad_input_test(cg_on_non_symmetric_tangent "Linear solver/Method = cg-amg .*needs a symmetric matrix.*consistent co-rotational"
   ${COSHELL_PRM}/benchmarks/cantilever_end_moment.prm --set "Linear solver/Method=cg-amg")
+
+# Displacement-driven stage: a prescribed end rotation 2 pi t (zero external
+# load) rolls the strip along the analytic elastica into a full circle;
+# Newton converges although f_ext = 0, quadratically: the order is asserted
+# on the correction norms, since the residual stalls at a round-off floor
+# (~4e-10 of the force scale, stiff membrane) before its order shows.
+coshell_nonlinear_test(stages.strip_roll_up_prescribed_rotation
+  dynamics/strip_roll_up.prm
+  ARGS --parameter time
+       --point tip_u 0.25 -4.360571 --point tip_w 0.25 7.639437
+       --point tip_u 0.5 -12 --point tip_w 0.5 7.639437
+       --point tip_u 0.75 -14.546479 --point tip_w 0.75 2.546479
+       --point tip_u 1 -12 --point tip_w 1 0
+       --rtol 0.01 --length 1.2 --min-correction-order 1.8
+       --set "Nonlinear solver/Residual tolerance=1e-12")
+
+# Bad stage and motion input.
+set(roll ${COSHELL_PRM}/dynamics/strip_roll_up.prm)
+coshell_bad_input_test(motion_unknown_boundary "Motion 1 moves boundary 7, which the mesh does not have"
+  ${roll} --set "Prescribed motions/Motion 1/Where=boundary 7")
+coshell_bad_input_test(motion_unparsable "Motion 1/Rotation angle: cannot parse '2\\*pi\\*\\(t'"
+  ${roll} --set "Prescribed motions/Motion 1/Rotation angle=2*pi*(t")
+coshell_bad_input_test(motion_partial_rotation "list all of rx ry rz or none"
+  ${roll} --set "Prescribed motions/Motion 1/Components=ry")
+coshell_bad_input_test(stage_unknown_motion "Stage 1/Motions: motion 3 is not defined"
+  ${roll} --set "Stage 1/Motions=3")
+coshell_bad_input_test(stage_releases_unknown_boundary "Release names boundary id 5"
+  ${roll} --set "Stage 1/Release=5")
+coshell_bad_input_test(stage_bad_load_factor "Stage 1/Load factor: cannot parse"
+  ${roll} --set "Stage 1/Load factor=1+")

@@ -3,6 +3,7 @@
 #include <coshell/io/results.h>
 #include <coshell/model/external_loads.h>
 #include <coshell/model/internal_force.h>
+#include <coshell/model/prescribed_motions.h>
 #include <coshell/model/rigid_body_modes.h>
 #include <coshell/model/shell_model.h>
 #include <coshell/model/shell_problem.h>
@@ -109,6 +110,8 @@ namespace coshell::driver
     model::QuantitiesOfInterest::declare_parameters(prm);
     solvers::LinearSolver::declare_parameters(prm);
     solvers::PathFollowing::declare_parameters(prm);
+    model::PrescribedMotions::declare_parameters(prm);
+    Stages::declare_parameters(prm);
     prm.enter_subsection("Analysis");
     prm.declare_entry(
         "Type", "linear static",
@@ -136,6 +139,14 @@ namespace coshell::driver
     prm.enter_subsection("Analysis");
     analysis_type_ = prm.get("Type");
     prm.leave_subsection();
+    motions_.parse_parameters(prm);
+    Stage single;
+    single.analysis    = analysis_type_;
+    single.load_factor = Stages::default_load_factor(analysis_type_);
+    single.motions     = motions_.defined();
+    stages_.parse_parameters(prm, motions_.defined(), single);
+    if (stages_.staged())
+      analysis_type_ = "nonlinear static";
     check_analysis_choice();
     output_.parse_parameters(prm);
     solvers::ThreadSettings().parse_parameters(prm);
@@ -153,18 +164,14 @@ namespace coshell::driver
     const auto    start = std::chrono::steady_clock::now();
     mesh::Surface surface;
     mesh_.build(surface, level);
-    model::ShellModel         model(surface, element_, mesh_.normal_reference);
-    AffineConstraints<double> constraints;
-    boundary_conditions_.make_constraints(model, constraints);
-    constraints.close();
-    model::check_supports(model, constraints);
-    const double setup = seconds_since(start);
+    model::ShellModel model(surface, element_, mesh_.normal_reference);
+    const double      setup = seconds_since(start);
     log << "level " << level << ": " << surface.n_active_cells() << " cells, "
         << model.n_dofs() << " dofs, " << element_.formulation_name()
         << " formulation\n";
 
-    io::LevelResult result = (this->*analyses().at(analysis_type_))(
-        model, constraints, directory, log);
+    io::LevelResult result =
+        (this->*analyses().at(analysis_type_))(model, directory, log);
     result.wall_time_s.setup += setup;
     result.wall_time_s.total = seconds_since(start);
     result.level             = level;
@@ -181,14 +188,15 @@ namespace coshell::driver
     return result.to_json();
   }
 
-  io::LevelResult
-  Scene::solve_linear(const model::ShellModel         &model,
-                      const AffineConstraints<double> &constraints,
-                      const std::string               &directory,
-                      std::ostream                    &log)
+  io::LevelResult Scene::solve_linear(const model::ShellModel &model,
+                                      const std::string       &directory,
+                                      std::ostream            &log)
   {
-    io::LevelResult       result;
-    auto                  phase = std::chrono::steady_clock::now();
+    io::LevelResult           result;
+    auto                      phase = std::chrono::steady_clock::now();
+    AffineConstraints<double> constraints;
+    boundary_conditions_.make_constraints(model, constraints);
+    constraints.close();
     solvers::LinearStatic analysis(model, constraints);
     result.wall_time_s.setup = seconds_since(phase);
 
@@ -234,10 +242,12 @@ namespace coshell::driver
 
     std::vector<std::string>
     with_quantities(std::vector<std::string>             columns,
-                    const std::map<std::string, double> &quantities)
+                    const std::map<std::string, double> &quantities,
+                    const std::vector<std::string>      &after = {})
     {
       for (const auto &[name, value] : quantities)
         columns.push_back(name);
+      columns.insert(columns.end(), after.begin(), after.end());
       return columns;
     }
   } // namespace
@@ -246,12 +256,18 @@ namespace coshell::driver
   {
     static const std::map<std::string, AnalysisRunner> runners = {
         {"linear static", &Scene::solve_linear},
-        {"nonlinear static", &Scene::solve_nonlinear_static}};
+        {"nonlinear static", &Scene::run_stages}};
     return runners;
   }
 
   void Scene::check_analysis_choice() const
   {
+    if (analysis_type_ == "linear static" &&
+        (stages_.staged() || !motions_.empty()))
+      throw std::invalid_argument(
+          "Analysis/Type = linear static runs no stages and no prescribed "
+          "motions; set Analysis/Type = nonlinear static (or define the "
+          "stages' Analysis type)");
     if (analysis_type_ == "linear static" &&
         element_.formulation == model::Formulation::corotational)
       throw std::invalid_argument(
@@ -287,73 +303,124 @@ namespace coshell::driver
     }
   } // namespace
 
-  io::LevelResult
-  Scene::solve_nonlinear_static(const model::ShellModel         &model,
-                                const AffineConstraints<double> &constraints,
-                                const std::string               &directory,
-                                std::ostream                    &log)
+  AffineConstraints<double>
+  Scene::stage_constraints(const model::ShellModel &model,
+                           const Stage             &stage) const
   {
-    io::LevelResult result;
-    auto            phase = std::chrono::steady_clock::now();
-    const bool      finite =
-        element_.formulation == model::Formulation::corotational;
-    model::ShellState   state(model, finite);
-    model::ShellProblem problem(
-        model, state, constraints,
-        static_contributions(model, loads_, element_.formulation,
-                             path_following_.tangent(), log));
-    linear_solver_.check_applicable(non_symmetric_reason(problem));
-    const auto *internal     = problem.find<model::InternalForce>();
-    result.wall_time_s.setup = seconds_since(phase);
+    AffineConstraints<double> motions, supports;
+    motions_.make_constraints(model, stage.motions, motions);
+    boundary_conditions_.without(stage.released)
+        .make_constraints(model, supports);
+    // A prescribed motion overrides the supports at the vertices it moves.
+    motions.merge(
+        supports,
+        AffineConstraints<double>::MergeConflictBehavior::left_object_wins);
+    motions.close();
+    if (stage.analysis != "dynamic")
+      model::check_supports(model, motions);
+    return motions;
+  }
 
-    io::CsvFile curve(
-        directory + "/load_displacement.csv",
-        with_quantities({"step", "load_factor", "iterations"},
-                        quantities_.evaluate(model, state.values())));
-    io::CsvFile  history(directory + "/newton_history.csv",
-                         {"step", "iteration", "load_factor",
-                          "relative_residual", "correction_norm",
-                          "relative_energy"});
-    unsigned int last_written = 0;
-    const auto on_step = [&](unsigned int step, double, unsigned int iterations)
+  /// The files a staged run writes as it goes.
+  struct Scene::StagedOutput
+  {
+    io::CsvFile  curve, history;
+    unsigned int step = 0, last_written = 0;
+  };
+
+  void Scene::run_static_stage(const Stage         &stage,
+                               model::ShellProblem &problem,
+                               StagedOutput        &out,
+                               io::LevelResult     &result,
+                               const std::string   &directory,
+                               std::ostream        &log)
+  {
+    const auto &model    = problem.model();
+    const auto *internal = problem.find<model::InternalForce>();
+    const auto  on_step  = [&](unsigned int, double, unsigned int iterations)
     {
-      const double load_factor = problem.load_factor();
-      result.qoi               = quantities_.evaluate(model, state.values());
-      std::vector<double> row = {double(step), load_factor, double(iterations)};
+      const unsigned int step = ++out.step;
+      result.qoi = quantities_.evaluate(model, problem.state().values());
+      std::vector<double> row = {double(step), problem.load_factor(),
+                                 double(iterations)};
       for (const auto &[name, value] : result.qoi)
         row.push_back(value);
-      curve.row(row);
-      log << "  step " << step << ": load factor " << load_factor << ", "
-          << iterations << " Newton iterations\n";
+      row.push_back(stage.number);
+      row.push_back(problem.time());
+      out.curve.row(row);
+      log << "  step " << step << ": load factor " << problem.load_factor()
+          << ", time " << problem.time() << ", " << iterations
+          << " Newton iterations\n";
       result.load_steps = step;
       result.newton_iterations += iterations;
       if (output_.wants_step(step))
       {
-        output_.write(model, state.values(), internal->resultants(state),
-                      directory, step_file_name(step), load_factor);
-        last_written = step;
+        output_.write(model, problem.state().values(),
+                      internal->resultants(problem.state()), directory,
+                      step_file_name(step), problem.time());
+        out.last_written = step;
       }
     };
     const auto on_iteration =
         [&](unsigned int step, const solvers::NewtonIteration &record)
     {
-      history.row({double(step), double(record.iteration),
-                   problem.load_factor(), record.relative_residual,
-                   record.correction_norm, record.relative_energy});
+      out.history.row({double(out.step + 1), double(record.iteration),
+                       problem.load_factor(), record.relative_residual,
+                       record.correction_norm, record.relative_energy});
     };
-    phase = std::chrono::steady_clock::now();
     path_following_.run(problem, linear_solver_,
-                        quantities_.reference_load_factors(), on_step,
-                        on_iteration, log);
-    result.wall_time_s.solve = seconds_since(phase);
+                        stages_.staged() ? std::vector<double>()
+                                         : quantities_.reference_load_factors(),
+                        on_step, on_iteration, log);
+  }
 
-    phase = std::chrono::steady_clock::now();
-    if (last_written != result.load_steps)
-      output_.write(model, state.values(), internal->resultants(state),
-                    directory, step_file_name(result.load_steps),
-                    problem.load_factor());
-    curve.finish();
-    history.finish();
+  io::LevelResult Scene::run_stages(const model::ShellModel &model,
+                                    const std::string       &directory,
+                                    std::ostream            &log)
+  {
+    io::LevelResult result;
+    const bool      finite =
+        element_.formulation == model::Formulation::corotational;
+    model::ShellState state(model, finite);
+    StagedOutput      out{
+        io::CsvFile(directory + "/load_displacement.csv",
+                         with_quantities({"step", "load_factor", "iterations"},
+                                         quantities_.evaluate(model, state.values()),
+                                         {"stage", "time"})),
+        io::CsvFile(directory + "/newton_history.csv",
+                         {"step", "iteration", "load_factor", "relative_residual",
+                          "correction_norm", "relative_energy"})};
+    double start_time = 0;
+    for (const Stage &stage : stages_.list())
+    {
+      auto phase = std::chrono::steady_clock::now();
+      if (stages_.staged())
+        log << stage.name() << ", t = " << start_time << " .. "
+            << start_time + stage.duration << " s\n";
+      model::ShellProblem problem(
+          model, state, stage_constraints(model, stage),
+          static_contributions(model, loads_, element_.formulation,
+                               path_following_.tangent(), log),
+          motions_.increments(model, stage.motions));
+      problem.set_schedule({start_time, stage.duration, stage.load_factor});
+      linear_solver_.check_applicable(non_symmetric_reason(problem));
+      result.wall_time_s.setup += seconds_since(phase);
+      phase = std::chrono::steady_clock::now();
+      run_static_stage(stage, problem, out, result, directory, log);
+      result.wall_time_s.solve += seconds_since(phase);
+      start_time += stage.duration;
+    }
+
+    const auto phase = std::chrono::steady_clock::now();
+    if (out.last_written != result.load_steps)
+    {
+      const model::InternalForce internal(model, element_.formulation,
+                                          path_following_.tangent());
+      output_.write(model, state.values(), internal.resultants(state),
+                    directory, step_file_name(result.load_steps), start_time);
+    }
+    out.curve.finish();
+    out.history.finish();
     if (!quantities_.reference_curves().empty())
       write_reference_points(quantities_, directory);
     result.wall_time_s.output = seconds_since(phase);

@@ -15,12 +15,15 @@ namespace coshell::io
   {
     prm.enter_subsection("Output");
     prm.declare_entry("Directory", "output", Patterns::Anything(),
-                      "Where results go (the command line's --output wins).");
+                      "Directory path where results go (the command "
+                      "line's --output wins).");
     prm.declare_entry("Write VTU", "true", Patterns::Bool(),
-                      "Write solution.vtu and solution.pvd for ParaView.");
+                      "Selects whether to write solution.vtu and "
+                      "solution.pvd for ParaView (true/false).");
     prm.declare_entry("Steps between outputs", "1", Patterns::Integer(0),
                       "Nonlinear runs: write every n-th converged load step "
-                      "(0: only the last one).");
+                      "(0: only the last one); a step count "
+                      "(dimensionless).");
     prm.leave_subsection();
   }
 

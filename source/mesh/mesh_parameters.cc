@@ -14,34 +14,49 @@ namespace coshell::mesh
     prm.enter_subsection("Mesh");
     prm.declare_entry("Source", "rectangle",
                       Patterns::Selection("rectangle|gmsh"),
-                      "Where the mesh comes from: a generated rectangular "
-                      "plate in the z=0 plane (boundary ids 0: x=0, 1: x=Lx, "
-                      "2: y=0, 3: y=Ly) or a gmsh file.");
+                      "Selects where the mesh comes from: rectangle, a "
+                      "generated rectangular plate in the z=0 plane "
+                      "(boundary ids 0: x=0, 1: x=Lx, 2: y=0, 3: y=Ly), or "
+                      "gmsh, the file named by Gmsh file.");
     prm.declare_entry("Gmsh file", "", Patterns::Anything(),
-                      "A .msh file (read as is, then refined globally per "
-                      "level) or a .geo file (meshed by gmsh for each level "
-                      "with the gmsh constant refinement_level set to the "
-                      "level). Relative paths are "
-                      "tried from the working directory, then from the "
-                      "directory of the parameter file.");
+                      "File path of a .msh file (read as is, then refined "
+                      "globally per level) or a .geo file (meshed by gmsh "
+                      "for each level with the gmsh constant "
+                      "refinement_level set to the level). Relative paths "
+                      "are tried from the working directory, then from the "
+                      "directory of the parameter file. Coordinates in the "
+                      "file are in the length unit of the scene (m, mm, "
+                      "...).");
     prm.declare_entry("Triangle pattern", "crossed",
                       Patterns::Selection("same-diagonal|alternating|crossed"),
-                      "How a generated rectangle splits each square.");
-    prm.declare_entry("Length x", "1", Patterns::Double(0), "Plate size in x.");
-    prm.declare_entry("Length y", "1", Patterns::Double(0), "Plate size in y.");
+                      "Selects how a generated rectangle splits each "
+                      "square into triangles (same-diagonal, alternating "
+                      "or crossed).");
+    prm.declare_entry("Length x", "1", Patterns::Double(0),
+                      "Plate length along x, in length units of the scene "
+                      "(m, mm, ...); > 0 for Source = rectangle.");
+    prm.declare_entry("Length y", "1", Patterns::Double(0),
+                      "Plate length along y, in length units of the scene "
+                      "(m, mm, ...); > 0 for Source = rectangle.");
     prm.declare_entry("Subdivisions x", "4", Patterns::Integer(1),
-                      "Squares along x at refinement level 0.");
+                      "Number of squares along x at refinement level 0 "
+                      "(dimensionless).");
     prm.declare_entry("Subdivisions y", "4", Patterns::Integer(1),
-                      "Squares along y at refinement level 0.");
+                      "Number of squares along y at refinement level 0 "
+                      "(dimensionless).");
     prm.declare_entry("Refinement levels", "0",
                       Patterns::List(Patterns::Integer(0, 12), 1),
-                      "Levels to run; more than one makes a refinement study "
-                      "that writes convergence.csv. Each level halves h.");
+                      "List of refinement levels to run (each "
+                      "dimensionless); more than one makes a refinement "
+                      "study that writes convergence.csv. Each level halves "
+                      "h.");
     prm.declare_entry("Normal reference", "0, 0, 1",
                       Patterns::List(Patterns::Double(), 3, 3),
-                      "Cell normals are made consistent across edges and "
-                      "each connected patch is turned to face this "
-                      "direction; pressure acts along these normals.");
+                      "Direction vector x, y, z (dimensionless; only its "
+                      "direction matters). Cell normals are made consistent "
+                      "across edges and each connected patch is turned to "
+                      "face this direction; pressure acts along these "
+                      "normals.");
     prm.leave_subsection();
   }
 

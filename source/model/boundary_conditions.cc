@@ -197,12 +197,15 @@ namespace coshell::model
         "(u = theta = 0); simply supported hard (u = 0 and no rotation about "
         "the in-plane edge normal); simply supported soft (u = 0); symmetry "
         "x|y|z (mirror plane with that normal); free; fixed <components> "
-        "(e.g. 'fixed ux uz rx'). Example: 0: clamped, 1: symmetry x.");
+        "(e.g. 'fixed ux uz rx'). Example: 0: clamped, 1: symmetry x. "
+        "Boundary ids are dimensionless integers; the conditions hold the "
+        "chosen displacements and rotations at zero, so no unit applies.");
     prm.declare_entry(
         "Point conditions", "", Patterns::Anything(),
         "Conditions at the vertex nearest a point, as 'x y z : condition' "
-        "entries separated by ';' (e.g. '0 0 10 : fixed uz' to stop a rigid "
-        "translation of a self-equilibrated model).");
+        "entries separated by ';', x y z in length units of the scene (m, "
+        "mm, ...) (e.g. '0 0 10 : fixed uz' to stop a rigid translation of "
+        "a self-equilibrated model).");
     prm.leave_subsection();
   }
 
@@ -247,6 +250,18 @@ namespace coshell::model
   BoundaryConditions::conditions() const
   {
     return conditions_;
+  }
+
+  BoundaryConditions
+  BoundaryConditions::without(const std::vector<unsigned int> &ids) const
+  {
+    BoundaryConditions released = *this;
+    for (const unsigned int id : ids)
+      if (released.conditions_.erase(id) == 0)
+        throw std::invalid_argument(
+            "Release names boundary id " + std::to_string(id) +
+            ", which has no condition in Boundary conditions/Conditions");
+    return released;
   }
 
   void BoundaryConditions::make_constraints(

@@ -9,33 +9,41 @@ namespace coshell::model
   void ElementParameters::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Material");
-    prm.declare_entry("Young's modulus", "1", Patterns::Double(), "E, > 0.");
+    prm.declare_entry("Young's modulus", "1", Patterns::Double(),
+                      "Young's modulus E, force per area (Pa = N/m^2, or "
+                      "MPa = N/mm^2 in mm-N-s-tonne scenes); > 0.");
     prm.declare_entry("Poisson's ratio", "0.3", Patterns::Double(),
-                      "nu, in (-1, 0.5).");
-    prm.declare_entry("Thickness", "0.01", Patterns::Double(), "h, > 0.");
+                      "Poisson's ratio nu (dimensionless), in (-1, 0.5).");
+    prm.declare_entry("Thickness", "0.01", Patterns::Double(),
+                      "Shell thickness h, in length units of the scene (m, "
+                      "mm, ...); > 0.");
     prm.declare_entry("Density", "0", Patterns::Double(),
-                      "Mass per unit volume, >= 0; used by gravity loads.");
+                      "Mass per unit volume, >= 0 (kg/m^3 in SI, or "
+                      "tonne/mm^3 in mm-N-s-tonne scenes: steel 7850 kg/m^3 "
+                      "= 7.85e-9 t/mm^3); used by gravity loads.");
     prm.leave_subsection();
 
     prm.enter_subsection("Element");
     prm.declare_entry("Formulation", "linear",
                       Patterns::Selection("linear|corotational"),
+                      "Selects the kinematics. "
                       "linear: small displacements and rotations, one linear "
                       "solve. corotational: finite rotations (element-"
                       "independent co-rotational frame around the same "
                       "elements), solved by the Nonlinear solver.");
     prm.declare_entry(
         "Membrane element", "cst", Patterns::Selection("cst|andes|off"),
-        "In-plane part of the flat shell triangle: cst (the constant-strain "
-        "triangle plus the drilling penalty below), andes (Felippa's optimal "
-        "ANDES triangle with genuine drilling stiffness, much better in "
-        "in-plane bending; no penalty), or off (no membrane stiffness, as in "
-        "the paper's Table 1 runs).");
+        "Selects the in-plane part of the flat shell triangle: cst (the "
+        "constant-strain triangle plus the drilling penalty below), andes "
+        "(Felippa's optimal ANDES triangle with genuine drilling stiffness, "
+        "much better in in-plane bending; no penalty), or off (no membrane "
+        "stiffness, as in the paper's Table 1 runs).");
     prm.declare_entry("Bending element", "dkt",
                       Patterns::Selection("dkt|przemieniecki|off"),
-                      "Plate-bending part: the Discrete Kirchhoff Triangle, "
-                      "the paper's modified Przemieniecki incomplete cubic "
-                      "(x axis along edge AB = vertex 0 -> 1), or off.");
+                      "Selects the plate-bending part: dkt, the Discrete "
+                      "Kirchhoff Triangle; przemieniecki, the paper's "
+                      "modified Przemieniecki incomplete cubic (x axis along "
+                      "edge AB = vertex 0 -> 1); or off.");
     prm.declare_entry("Drilling stiffness factor", "1e-3", Patterns::Double(0),
                       "Dimensionless penalty tying each nodal drilling "
                       "rotation to the membrane's in-plane rotation, "

@@ -68,26 +68,35 @@ namespace coshell::model
   {
     prm.enter_subsection("Loads");
     prm.declare_entry("Pressure", "0", Patterns::Double(),
-                      "Uniform pressure (force per unit area) along the "
-                      "oriented cell normal, lumped to the vertices.");
+                      "Uniform pressure along the oriented cell normal, "
+                      "force per area (Pa = N/m^2, or MPa = N/mm^2 in "
+                      "mm-N-s-tonne scenes), lumped to the vertices.");
     prm.declare_entry("Pressure type", "dead",
                       Patterns::Selection("dead|follower"),
+                      "Selects the pressure direction. "
                       "dead: the pressure keeps the direction of the initial "
                       "normals; follower: it follows the deformed normals "
                       "(co-rotational formulation only; same as dead in "
                       "linear runs).");
     prm.declare_entry("Gravity", "0, 0, 0",
                       Patterns::List(Patterns::Double(), 3, 3),
-                      "Acceleration vector; the load is density * thickness "
-                      "* area * g, lumped to the vertices.");
+                      "Acceleration vector gx, gy, gz, length/time^2 "
+                      "(m/s^2, or mm/s^2 in mm-N-s-tonne scenes: 9810 for "
+                      "g); the load is density * thickness * area * g, "
+                      "lumped to the vertices.");
     prm.declare_entry("Point forces", "", Patterns::Anything(),
                       "Forces at the vertex nearest each point, as "
-                      "'x y z : fx fy fz' entries separated by ';'.");
+                      "'x y z : fx fy fz' entries separated by ';'; x y z "
+                      "in length units of the scene (m, mm, ...), fx fy fz "
+                      "in force units (N).");
     prm.declare_entry("Point moments", "", Patterns::Anything(),
                       "Moments at the vertex nearest each point, as "
-                      "'x y z : mx my mz' entries separated by ';'.");
+                      "'x y z : mx my mz' entries separated by ';'; x y z "
+                      "in length units of the scene (m, mm, ...), mx my mz "
+                      "force*length (N m, or N mm in mm-N-s-tonne "
+                      "scenes).");
     prm.declare_entry("Load factor", "1", Patterns::Double(),
-                      "Multiplies every load above.");
+                      "Multiplies every load above (dimensionless).");
     prm.leave_subsection();
   }
 

@@ -37,20 +37,30 @@ namespace coshell::model
     prm.declare_entry("Point values", "", Patterns::Anything(),
                       "Nodal values at the vertex nearest a point, as "
                       "'name: x y z component' entries separated by ';'; "
-                      "component is ux, uy, uz, rx, ry or rz.");
+                      "x y z in length units of the scene (m, mm, ...); "
+                      "component is ux, uy, uz, rx, ry or rz. The value is "
+                      "in the unit of its component: length for ux, uy, "
+                      "uz, rad for rx, ry, rz.");
     prm.declare_entry("Maximum values", "", Patterns::Anything(),
                       "Largest-magnitude nodal value of a component over the "
                       "mesh (sign kept), as 'name: component' entries "
-                      "separated by ';'.");
+                      "separated by ';'. The value is in the unit of its "
+                      "component: length for ux, uy, uz, rad for rx, ry, "
+                      "rz.");
     prm.declare_entry("Reference values", "",
                       Patterns::Map(Patterns::Anything(), Patterns::Double()),
                       "Reference value per quantity name ('name: value, "
-                      "...'); summary.json then reports the relative error.");
+                      "...'), each in the unit of that quantity (length for "
+                      "ux, uy, uz, rad for rx, ry, rz); summary.json then "
+                      "reports the relative error (dimensionless).");
     prm.declare_entry("Reference curves", "", Patterns::Anything(),
                       "Reference load-displacement points for nonlinear "
                       "runs, as 'name: factor value, factor value, ...' "
-                      "entries separated by ';'. Load control stops exactly "
-                      "at these load factors; the points are written to "
+                      "entries separated by ';'; factor is the load factor "
+                      "(dimensionless), value is in the unit of the "
+                      "quantity (length for ux, uy, uz, rad for rx, ry, "
+                      "rz). Load control stops exactly at these load "
+                      "factors; the points are written to "
                       "reference_points.csv and plotted.");
     prm.leave_subsection();
   }

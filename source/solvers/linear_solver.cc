@@ -55,6 +55,7 @@ namespace coshell::solvers
     prm.declare_entry(
         "Method", "cholmod",
         Patterns::Selection("cholmod|umfpack|amesos-klu|amesos-mumps|cg-amg"),
+        "Selects the linear solver. "
         "cholmod: SuiteSparse supernodal Cholesky, analysed "
         "once per sparsity pattern (symmetric positive "
         "definite systems; non-symmetric ones, such as the "
@@ -68,11 +69,14 @@ namespace coshell::solvers
         "multigrid (see the AMG entries; slow on thin shells "
         "without the rigid-body near-null space).");
     prm.declare_entry("Tolerance", "1e-10", Patterns::Double(0),
-                      "Relative residual tolerance of iterative methods.");
+                      "Relative residual tolerance of iterative methods "
+                      "(dimensionless: |r| <= tol |b|).");
     prm.declare_entry("Maximum iterations", "10000", Patterns::Integer(1),
-                      "Iteration limit of iterative methods.");
+                      "Iteration limit of iterative methods "
+                      "(dimensionless).");
     prm.declare_entry("AMG near-null space", "rigid body",
                       Patterns::Selection("rigid body|none"),
+                      "Selects the AMG near-null space. "
                       "rigid body: give ML the six rigid-body motions "
                       "(translations and rotations, with the rotation DoFs) "
                       "as the near-null space, 6 DoFs per node; none: ML's "
@@ -81,12 +85,13 @@ namespace coshell::solvers
     prm.declare_entry(
         "AMG smoother", "Chebyshev",
         Patterns::Selection("Chebyshev|symmetric Gauss-Seidel|ILU"),
-        "ML smoother type.");
+        "Selects the ML smoother type (Chebyshev, symmetric "
+        "Gauss-Seidel or ILU).");
     prm.declare_entry("AMG smoother sweeps", "2", Patterns::Integer(1),
-                      "Smoothing sweeps per level.");
+                      "Smoothing sweeps per level (dimensionless).");
     prm.declare_entry("AMG aggregation threshold", "1e-4", Patterns::Double(0),
                       "ML aggregation threshold (drop tolerance of the "
-                      "strength-of-connection graph).");
+                      "strength-of-connection graph; dimensionless).");
     prm.leave_subsection();
   }
 

@@ -135,16 +135,18 @@ namespace coshell::solvers
       problem.evaluate(residual, &tangent);
       const double relative_residual =
           residual.l2_norm() / std::max(problem.force_scale(), 1e-300);
-      if (!std::isfinite(relative_residual) ||
-          relative_residual > parameters_.divergence_limit)
+      // While a prescribed increment is pending the residual holds its
+      // effect on the free unknowns, which no force measures yet.
+      const bool pending = problem.prescribed_increment_pending();
+      if (!std::isfinite(residual.l2_norm()) ||
+          (!pending && relative_residual > parameters_.divergence_limit))
         throw NewtonFailure("Newton diverged (relative residual " +
                             short_number(relative_residual) + ")");
       // Converged when the residual is small, or when the last correction
       // has dropped to round-off in both norm and energy: very stiff
       // membranes leave a round-off floor in the residual.
-      if (!problem.prescribed_increment_pending() &&
-          (relative_residual <= parameters_.residual_tolerance ||
-           correction_small))
+      if (!pending && (relative_residual <= parameters_.residual_tolerance ||
+                       correction_small))
       {
         if (observer)
           observer({iteration, relative_residual, 0, 0});
@@ -228,8 +230,8 @@ namespace coshell::solvers
                           " step cuts: " + cause);
     size_ = settings_.cut_factor * attempted;
     if (size_ < settings_.minimum)
-      throw NewtonFailure(step + " failed: the step size " + short_number(size_) +
-                          " fell below its minimum " +
+      throw NewtonFailure(step + " failed: the step size " +
+                          short_number(size_) + " fell below its minimum " +
                           short_number(settings_.minimum) + ": " + cause);
   }
 } // namespace coshell::solvers

@@ -48,8 +48,9 @@ namespace coshell::solvers
   {
     prm.enter_subsection("Parallel");
     prm.declare_entry("Threads", "0", Patterns::Integer(0),
-                      "Threads for assembly; 0 = all cores (capped by the "
-                      "environment variable DEAL_II_NUM_THREADS if set).");
+                      "Number of threads for assembly (dimensionless); 0 = "
+                      "all cores (capped by the environment variable "
+                      "DEAL_II_NUM_THREADS if set).");
     prm.leave_subsection();
   }
 

@@ -7,6 +7,7 @@ Newton history against references given here.
      [--rtol R] [--length L]   |value - reference| <= R * max(|reference|, L)
      [--min-order P]           some Newton iteration shows convergence order
                                >= P (log r_{k+1} / log r_k, relative residuals)
+     [--min-correction-order P] the same for the Newton correction norms
      [--max-iterations N]      no step needs more than N iterations
      [--limit-point]           the load factor rises, then falls (a limit point
                                was passed) while the QOI of --monotone grows
@@ -15,6 +16,8 @@ Newton history against references given here.
                                least VALUE
      [--min-steps N]           the path has at least N converged steps (with
                                one requested load step: a step was cut)
+     [--parameter COLUMN]      --point positions are values of COLUMN
+                               (default load_factor; time for staged scenes)
 """
 import argparse
 import csv
@@ -30,23 +33,40 @@ def read_csv(path):
         return list(csv.DictReader(f))
 
 
-def check_points(rows, points, rtol, length):
+def check_points(rows, points, rtol, length, column="load_factor"):
     failures = []
     for name, factor, reference in points:
         factor, reference = float(factor), float(reference)
-        row = min(rows, key=lambda r: abs(float(r["load_factor"]) - factor))
-        if abs(float(row["load_factor"]) - factor) > 1e-9:
-            failures.append(f"no step at load factor {factor}")
+        row = min(rows, key=lambda r: abs(float(r[column]) - factor))
+        if abs(float(row[column]) - factor) > 1e-9:
+            failures.append(f"no step at {column} {factor}")
             continue
         value = float(row[name])
         scale = max(abs(reference), length)
         error = abs(value - reference) / scale
         verdict = "ok" if error <= rtol else "FAIL"
-        print(f"{name} at load factor {factor}: {value:.6g} vs {reference:.6g} "
+        print(f"{name} at {column} {factor}: {value:.6g} vs {reference:.6g} "
               f"-> error {error:.3e} of {scale:.4g} (tolerance {rtol}) {verdict}")
         if verdict != "ok":
             failures.append(f"{name} at {factor}")
     return failures
+
+
+def correction_orders(history):
+    """Observed orders p = log(c2/c1) / log(c1/c0) of three consecutive
+    decreasing Newton correction norms of a step (c0 < 1e-2, c2 above
+    round-off 1e-15): the error estimate when the residual has a round-off
+    floor (stiff membranes) or no load scales it (prescribed motions)."""
+    orders = []
+    steps = {}
+    for row in history:
+        if float(row["correction_norm"]) > 0:
+            steps.setdefault(row["step"], []).append(float(row["correction_norm"]))
+    for norms in steps.values():
+        for c0, c1, c2 in zip(norms, norms[1:], norms[2:]):
+            if c0 < 1e-2 and c2 < c1 < c0 and c2 > 1e-15:
+                orders.append(math.log(c2 / c1) / math.log(c1 / c0))
+    return orders
 
 
 def convergence_orders(history):
@@ -75,11 +95,15 @@ def main():
     parser.add_argument("--rtol", type=float, default=0.01)
     parser.add_argument("--length", type=float, default=0.0)
     parser.add_argument("--min-order", type=float)
+    parser.add_argument("--min-correction-order", type=float)
     parser.add_argument("--max-iterations", type=int)
     parser.add_argument("--limit-point", action="store_true")
     parser.add_argument("--monotone")
     parser.add_argument("--minimum", nargs=3, action="append", default=[])
     parser.add_argument("--min-steps", type=int)
+    parser.add_argument("--parameter", default="load_factor",
+                        help="column the --point positions refer to "
+                             "(load_factor, or time for staged scenes)")
     args = parser.parse_args()
 
     if os.path.isdir(args.output):
@@ -93,7 +117,8 @@ def main():
     rows = read_csv(os.path.join(args.output, "load_displacement.csv"))
     history = read_csv(os.path.join(args.output, "newton_history.csv"))
 
-    failures = check_points(rows, args.point, args.rtol, args.length)
+    failures = check_points(rows, args.point, args.rtol, args.length,
+                            args.parameter)
     checks = len(args.point) + len(args.minimum)
     for name, factor, minimum in args.minimum:
         row = min(rows, key=lambda r: abs(float(r["load_factor"]) - float(factor)))
@@ -102,6 +127,13 @@ def main():
               f"(required >= {minimum})")
         if abs(float(row["load_factor"]) - float(factor)) > 1e-9 or value < float(minimum):
             failures.append(f"{name} below {minimum}")
+    if args.min_correction_order is not None:
+        checks += 1
+        best = max(correction_orders(history), default=0)
+        print(f"best observed order of the Newton corrections: {best:.2f} "
+              f"(required >= {args.min_correction_order})")
+        if best < args.min_correction_order:
+            failures.append("no quadratic convergence of the corrections")
     if args.min_order is not None:
         checks += 1
         orders = convergence_orders(history)

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <coshell/driver/stage.h>
 #include <coshell/io/json.h>
 #include <coshell/io/results.h>
 #include <coshell/io/vtu_output.h>
@@ -7,7 +8,9 @@
 #include <coshell/model/boundary_conditions.h>
 #include <coshell/model/element_parameters.h>
 #include <coshell/model/loads.h>
+#include <coshell/model/prescribed_motions.h>
 #include <coshell/model/quantities.h>
+#include <coshell/model/shell_problem.h>
 #include <coshell/solvers/linear_solver.h>
 #include <coshell/solvers/path_following.h>
 
@@ -54,29 +57,37 @@ namespace coshell::driver
     solvers::LinearSolver        linear_solver_;
     solvers::PathFollowing       path_following_;
     std::string                  analysis_type_ = "linear static";
+    model::PrescribedMotions     motions_;
+    Stages                       stages_;
     io::VtuOutput                output_;
     std::vector<io::LevelResult> levels_;
 
-    io::Json run_level(unsigned int       level,
-                       const std::string &directory,
-                       std::ostream      &log);
-    io::LevelResult
-    solve_linear(const model::ShellModel                 &model,
-                 const dealii::AffineConstraints<double> &constraints,
-                 const std::string                       &directory,
-                 std::ostream                            &log);
-    io::LevelResult
-    solve_nonlinear_static(const model::ShellModel                 &model,
-                           const dealii::AffineConstraints<double> &constraints,
-                           const std::string                       &directory,
-                           std::ostream                            &log);
+    io::Json        run_level(unsigned int       level,
+                              const std::string &directory,
+                              std::ostream      &log);
+    io::LevelResult solve_linear(const model::ShellModel &model,
+                                 const std::string       &directory,
+                                 std::ostream            &log);
+    /// Runs the stages (nonlinear static or dynamic) in order, carrying
+    /// the configuration over.
+    io::LevelResult run_stages(const model::ShellModel &model,
+                               const std::string       &directory,
+                               std::ostream            &log);
+    struct StagedOutput;
+    void run_static_stage(const Stage         &stage,
+                          model::ShellProblem &problem,
+                          StagedOutput        &out,
+                          io::LevelResult     &result,
+                          const std::string   &directory,
+                          std::ostream        &log);
+    /// Supports less the released ones, plus the stage's motions.
+    dealii::AffineConstraints<double>
+    stage_constraints(const model::ShellModel &model, const Stage &stage) const;
 
     /// The analyses by their Analysis/Type name.
-    using AnalysisRunner =
-        io::LevelResult (Scene::*)(const model::ShellModel &,
-                                   const dealii::AffineConstraints<double> &,
-                                   const std::string &,
-                                   std::ostream &);
+    using AnalysisRunner = io::LevelResult (Scene::*)(const model::ShellModel &,
+                                                      const std::string &,
+                                                      std::ostream &);
     static const std::map<std::string, AnalysisRunner> &analyses();
     void check_analysis_choice() const;
   };

@@ -50,6 +50,11 @@ namespace coshell::model
 
     const std::map<unsigned int, BoundaryCondition> &conditions() const;
 
+    /// The same conditions with those of the listed boundary ids removed
+    /// (a stage that releases supports); throws naming an id that has no
+    /// condition.
+    BoundaryConditions without(const std::vector<unsigned int> &ids) const;
+
   private:
     std::map<unsigned int, BoundaryCondition> conditions_;
     std::vector<std::pair<dealii::Point<3>, BoundaryCondition>>
