@@ -52,37 +52,33 @@ def check_points(rows, points, rtol, length, column="load_factor"):
     return failures
 
 
-def correction_orders(history):
-    """Observed orders p = log(c2/c1) / log(c1/c0) of three consecutive
-    decreasing Newton correction norms of a step (c0 < 1e-2, c2 above
-    round-off 1e-15): the error estimate when the residual has a round-off
-    floor (stiff membranes) or no load scales it (prescribed motions)."""
+def observed_orders(history, column, floor):
+    """Observed orders p = log(e2/e1) / log(e1/e0) of three consecutive
+    decreasing values of COLUMN in one step, in the asymptotic range
+    (e0 < 1e-2, e2 above the round-off FLOOR). This estimate is independent
+    of the constant C in e_{k+1} = C e_k^p."""
     orders = []
     steps = {}
     for row in history:
-        if float(row["correction_norm"]) > 0:
-            steps.setdefault(row["step"], []).append(float(row["correction_norm"]))
-    for norms in steps.values():
-        for c0, c1, c2 in zip(norms, norms[1:], norms[2:]):
-            if c0 < 1e-2 and c2 < c1 < c0 and c2 > 1e-15:
-                orders.append(math.log(c2 / c1) / math.log(c1 / c0))
+        if float(row[column]) > 0:
+            steps.setdefault(row["step"], []).append(float(row[column]))
+    for values in steps.values():
+        for e0, e1, e2 in zip(values, values[1:], values[2:]):
+            if e0 < 1e-2 and e2 < e1 < e0 and e2 > floor:
+                orders.append(math.log(e2 / e1) / math.log(e1 / e0))
     return orders
 
 
 def convergence_orders(history):
-    """Observed orders p = log(r2/r1) / log(r1/r0) for three consecutive
-    relative residuals of a step in the asymptotic range (r0 < 1e-2,
-    decreasing, r2 above round-off 1e-13). This estimate is independent of
-    the constant C in r_{k+1} = C r_k^p."""
-    orders = []
-    steps = {}
-    for row in history:
-        steps.setdefault(row["step"], []).append(float(row["relative_residual"]))
-    for residuals in steps.values():
-        for r0, r1, r2 in zip(residuals, residuals[1:], residuals[2:]):
-            if r0 < 1e-2 and r2 < r1 < r0 and r2 > 1e-13:
-                orders.append(math.log(r2 / r1) / math.log(r1 / r0))
-    return orders
+    """Orders of the relative residuals (round-off floor 1e-13)."""
+    return observed_orders(history, "relative_residual", 1e-13)
+
+
+def correction_orders(history):
+    """Orders of the Newton correction norms (floor 1e-15): the error
+    estimate when the residual stalls at a round-off floor (stiff
+    membranes) before its order shows."""
+    return observed_orders(history, "correction_norm", 1e-15)
 
 
 def main():
