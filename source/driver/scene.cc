@@ -2,6 +2,7 @@
 #include <coshell/io/csv_file.h>
 #include <coshell/io/results.h>
 #include <coshell/model/external_loads.h>
+#include <coshell/model/inertia.h>
 #include <coshell/model/internal_force.h>
 #include <coshell/model/prescribed_motions.h>
 #include <coshell/model/rigid_body_modes.h>
@@ -15,6 +16,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -111,14 +113,19 @@ namespace coshell::driver
     solvers::LinearSolver::declare_parameters(prm);
     solvers::PathFollowing::declare_parameters(prm);
     model::PrescribedMotions::declare_parameters(prm);
+    model::InertiaParameters::declare_parameters(prm);
+    solvers::TimeIntegration::declare_parameters(prm);
     Stages::declare_parameters(prm);
     prm.enter_subsection("Analysis");
     prm.declare_entry(
         "Type", "linear static",
-        Patterns::Selection("linear static|nonlinear static"),
+        Patterns::Selection("linear static|nonlinear static|dynamic"),
         "linear static: one linear solve (Element/Formulation = linear); "
         "nonlinear static: the equilibrium path by Newton (subsection "
-        "Nonlinear solver), with linear or co-rotational kinematics.");
+        "Nonlinear solver), with linear or co-rotational kinematics; "
+        "dynamic: implicit time integration (subsections Time "
+        "integration, Mass and damping). Stages (subsections Stage k) "
+        "give each stage its own type instead.");
     prm.leave_subsection();
     io::VtuOutput::declare_parameters(prm);
     solvers::ThreadSettings::declare_parameters(prm);
@@ -140,8 +147,12 @@ namespace coshell::driver
     analysis_type_ = prm.get("Type");
     prm.leave_subsection();
     motions_.parse_parameters(prm);
+    inertia_.parse_parameters(prm);
+    time_integration_.parse_parameters(prm);
     Stage single;
-    single.analysis    = analysis_type_;
+    single.analysis = analysis_type_;
+    single.duration =
+        analysis_type_ == "dynamic" ? time_integration_.end_time() : 1.0;
     single.load_factor = Stages::default_load_factor(analysis_type_);
     single.motions     = motions_.defined();
     stages_.parse_parameters(prm, motions_.defined(), single);
@@ -256,12 +267,24 @@ namespace coshell::driver
   {
     static const std::map<std::string, AnalysisRunner> runners = {
         {"linear static", &Scene::solve_linear},
-        {"nonlinear static", &Scene::run_stages}};
+        {"nonlinear static", &Scene::run_stages},
+        {"dynamic", &Scene::run_stages}};
     return runners;
+  }
+
+  bool Scene::has_dynamic_stage() const
+  {
+    for (const Stage &stage : stages_.list())
+      if (stage.analysis == "dynamic")
+        return true;
+    return false;
   }
 
   void Scene::check_analysis_choice() const
   {
+    if (has_dynamic_stage() && !(element_.material.density > 0))
+      throw std::invalid_argument(
+          "dynamics needs mass: Material/Density must be positive");
     if (analysis_type_ == "linear static" &&
         (stages_.staged() || !motions_.empty()))
       throw std::invalid_argument(
@@ -324,9 +347,107 @@ namespace coshell::driver
   /// The files a staged run writes as it goes.
   struct Scene::StagedOutput
   {
-    io::CsvFile  curve, history;
-    unsigned int step = 0, last_written = 0;
+    io::CsvFile                curve, history;
+    std::optional<io::CsvFile> time_history;
+    unsigned int               step = 0, last_written = 0;
+    /// Energy bookkeeping of the dynamic stages: work of the loads and
+    /// reactions, energy dissipated by damping and drag (trapezoidal in
+    /// time), and the generalized force and dissipation power of the last
+    /// step.
+    double         external_work = 0, dissipated_energy = 0, power = 0;
+    Vector<double> generalized_force;
   };
+
+  namespace
+  {
+    /// External loads plus the reactions at constrained DoFs: the forces
+    /// that do work on the shell. The reaction R balances the residual
+    /// r = f_ext - f_int - f_inertia on a constrained row: R = -r.
+    void working_forces(const model::ShellProblem &problem, Vector<double> &g)
+    {
+      using model::ForceKind;
+      g                       = problem.force(ForceKind::external);
+      const auto &constraints = problem.constraints();
+      for (unsigned int i = 0; i < g.size(); ++i)
+        if (constraints.is_constrained(i))
+          g[i] = -problem.force(ForceKind::internal)[i] -
+                 problem.force(ForceKind::inertia)[i];
+    }
+  } // namespace
+
+  void Scene::run_dynamic_stage(const Stage         &stage,
+                                model::ShellProblem &problem,
+                                double               start_time,
+                                StagedOutput        &out,
+                                io::LevelResult     &result,
+                                const std::string   &directory,
+                                std::ostream        &log)
+  {
+    const auto    &model    = problem.model();
+    const auto    &state    = problem.state();
+    const auto    *internal = problem.find<model::InternalForce>();
+    const auto    *inertia  = problem.find<model::Inertia>();
+    Vector<double> g, q(model.n_dofs());
+    // The forces at the start of the stage, for the work of the first step.
+    Vector<double> residual(model.n_dofs());
+    problem.set_time(start_time);
+    problem.evaluate(residual, nullptr);
+    working_forces(problem, out.generalized_force);
+    out.power = inertia->measures(state).dissipation_power;
+
+    const auto on_step = [&](const solvers::TimeIntegration::StepRecord &record)
+    {
+      const unsigned int step = ++out.step;
+      working_forces(problem, g);
+      problem.state().step_increment(q); // relative to the previous save
+      out.external_work += 0.5 * ((g * q) + (out.generalized_force * q));
+      out.generalized_force                = g;
+      const model::KineticMeasures kinetic = inertia->measures(state);
+      out.dissipated_energy +=
+          0.5 * record.dt * (out.power + kinetic.dissipation_power);
+      out.power                  = kinetic.dissipation_power;
+      const double strain_energy = internal->strain_energy(state);
+      result.qoi                 = quantities_.evaluate(model, state.values());
+      std::vector<double> row    = {double(step),
+                                    record.time,
+                                    record.dt,
+                                    double(record.iterations),
+                                    kinetic.kinetic_energy,
+                                    strain_energy,
+                                    out.external_work,
+                                    out.dissipated_energy,
+                                    kinetic.kinetic_energy + strain_energy};
+      for (unsigned int d = 0; d < 3; ++d)
+        row.push_back(kinetic.linear_momentum[d]);
+      for (unsigned int d = 0; d < 3; ++d)
+        row.push_back(kinetic.angular_momentum[d]);
+      for (const auto &[name, value] : result.qoi)
+        row.push_back(value);
+      row.push_back(stage.number);
+      out.time_history->row(row);
+      result.steps = step;
+      result.newton_iterations += record.iterations;
+      if (output_.wants_step(step))
+      {
+        output_.write(model, state.values(), internal->resultants(state),
+                      directory, step_file_name(step), record.time);
+        out.last_written = step;
+      }
+    };
+    const auto on_iteration =
+        [&](unsigned int step, const solvers::NewtonIteration &record)
+    {
+      out.history.row({double(step), double(record.iteration),
+                       problem.load_factor(), record.relative_residual,
+                       record.correction_norm, record.relative_energy});
+    };
+    const auto wall = std::chrono::steady_clock::now();
+    time_integration_.run(problem, linear_solver_, path_following_.newton(),
+                          start_time, start_time + stage.duration, out.step,
+                          on_step, on_iteration, log);
+    result.simulated_time_s += stage.duration;
+    result.dynamic_wall_time_s += seconds_since(wall);
+  }
 
   void Scene::run_static_stage(const Stage         &stage,
                                model::ShellProblem &problem,
@@ -390,6 +511,20 @@ namespace coshell::driver
         io::CsvFile(directory + "/newton_history.csv",
                          {"step", "iteration", "load_factor", "relative_residual",
                           "correction_norm", "relative_energy"})};
+    if (has_dynamic_stage())
+    {
+      out.time_history.emplace(
+          directory + "/time_history.csv",
+          with_quantities(
+              {"step", "time", "dt", "iterations", "kinetic_energy",
+               "strain_energy", "external_work", "dissipated_energy",
+               "total_energy", "linear_momentum_x", "linear_momentum_y",
+               "linear_momentum_z", "angular_momentum_x", "angular_momentum_y",
+               "angular_momentum_z"},
+              quantities_.evaluate(model, state.values()), {"stage"}));
+      model::Inertia(model, inertia_).set_initial_velocity(state);
+      state.save();
+    }
     double start_time = 0;
     for (const Stage &stage : stages_.list())
     {
@@ -397,30 +532,40 @@ namespace coshell::driver
       if (stages_.staged())
         log << stage.name() << ", t = " << start_time << " .. "
             << start_time + stage.duration << " s\n";
-      model::ShellProblem problem(
-          model, state, stage_constraints(model, stage),
-          static_contributions(model, loads_, element_.formulation,
-                               path_following_.tangent(), log),
-          motions_.increments(model, stage.motions));
+      auto contributions = static_contributions(
+          model, loads_, element_.formulation, path_following_.tangent(), log);
+      if (stage.analysis == "dynamic")
+        contributions.push_back(
+            std::make_unique<model::Inertia>(model, inertia_));
+      model::ShellProblem problem(model, state, stage_constraints(model, stage),
+                                  std::move(contributions),
+                                  motions_.increments(model, stage.motions));
       problem.set_schedule({start_time, stage.duration, stage.load_factor});
       linear_solver_.check_applicable(non_symmetric_reason(problem));
       result.wall_time_s.setup += seconds_since(phase);
       phase = std::chrono::steady_clock::now();
-      run_static_stage(stage, problem, out, result, directory, log);
+      if (stage.analysis == "dynamic")
+        run_dynamic_stage(stage, problem, start_time, out, result, directory,
+                          log);
+      else
+        run_static_stage(stage, problem, out, result, directory, log);
       result.wall_time_s.solve += seconds_since(phase);
       start_time += stage.duration;
     }
 
-    const auto phase = std::chrono::steady_clock::now();
-    if (out.last_written != result.load_steps)
+    const auto         phase = std::chrono::steady_clock::now();
+    const unsigned int last  = out.step;
+    if (out.last_written != last)
     {
       const model::InternalForce internal(model, element_.formulation,
                                           path_following_.tangent());
       output_.write(model, state.values(), internal.resultants(state),
-                    directory, step_file_name(result.load_steps), start_time);
+                    directory, step_file_name(last), start_time);
     }
     out.curve.finish();
     out.history.finish();
+    if (out.time_history)
+      out.time_history->finish();
     if (!quantities_.reference_curves().empty())
       write_reference_points(quantities_, directory);
     result.wall_time_s.output = seconds_since(phase);
@@ -448,10 +593,12 @@ namespace coshell::driver
       level_summaries.push_back(run_level(level, directory, log));
       summary = level_summaries.back();
     }
-    summary["prm_file"]      = prm_file_;
-    summary["commit"]        = git_commit;
-    summary["formulation"]   = element_.formulation_name();
-    summary["analysis"]      = analysis_type_;
+    summary["prm_file"]    = prm_file_;
+    summary["commit"]      = git_commit;
+    summary["formulation"] = element_.formulation_name();
+    summary["analysis"]    = stages_.staged() ? "staged" : analysis_type_;
+    if (has_dynamic_stage())
+      summary["time_integration"] = time_integration_.method();
     summary["element"]       = element_.element_name();
     summary["linear_solver"] = linear_solver_.method();
     summary["threads"]       = solvers::ThreadSettings::n_threads();

@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <coshell/io/results.h>
 
 #include <cmath>
@@ -31,10 +32,17 @@ namespace coshell::io
     times["solve"]                   = wall_time_s.solve;
     times["output"]                  = wall_time_s.output;
     times["total"]                   = wall_time_s.total;
-    if (load_steps > 0)
-    {
-      json["load_steps"]        = load_steps;
+    if (load_steps > 0 || steps > 0)
       json["newton_iterations"] = newton_iterations;
+    if (load_steps > 0)
+      json["load_steps"] = load_steps;
+    if (steps > 0)
+    {
+      json["steps"]            = steps;
+      json["simulated_time_s"] = simulated_time_s;
+      // Simulated time over the wall time of the time stepping.
+      json["real_time_factor"] =
+          simulated_time_s / std::max(dynamic_wall_time_s, 1e-12);
     }
     Json::Object qoi_json(qoi.begin(), qoi.end());
     json["qoi"] = qoi_json;

@@ -145,12 +145,20 @@ namespace coshell::model
     residual += global_force_;
   }
 
-  double ShellProblem::force_scale() const
+  double ShellProblem::current_force_scale() const
   {
     double scale = 0;
     for (const auto &force : forces_)
       scale = std::max(scale, force.l2_norm());
     return scale;
+  }
+
+  double ShellProblem::force_scale() const
+  {
+    // Forces that die out (a structure coming to rest) must not make
+    // round-off look large: the scale keeps the largest force of the
+    // converged states so far.
+    return std::max(current_force_scale(), converged_force_scale_);
   }
 
   const Vector<double> &ShellProblem::force(ForceKind kind) const
@@ -175,6 +183,8 @@ namespace coshell::model
 
   void ShellProblem::save()
   {
+    converged_force_scale_ =
+        std::max(converged_force_scale_, current_force_scale());
     state_.save();
   }
 

@@ -27,6 +27,8 @@ import shutil
 import subprocess
 import sys
 
+from scene_runner import run_scene
+
 
 def read_csv(path):
     with open(path) as f:
@@ -102,14 +104,7 @@ def main():
                              "(load_factor, or time for staged scenes)")
     args = parser.parse_args()
 
-    if os.path.isdir(args.output):
-        shutil.rmtree(args.output)
-    command = [args.coshell, args.prm, "--output", args.output]
-    for assignment in args.set:
-        command += ["--set", assignment]
-    print("running:", " ".join(repr(c) for c in command), flush=True)
-    if subprocess.run(command).returncode != 0:
-        sys.exit("FAIL: coshell exited with an error")
+    run_scene(args.coshell, args.prm, args.output, args.set)
     rows = read_csv(os.path.join(args.output, "load_displacement.csv"))
     history = read_csv(os.path.join(args.output, "newton_history.csv"))
 

@@ -7,12 +7,14 @@
 #include <coshell/mesh/mesh.h>
 #include <coshell/model/boundary_conditions.h>
 #include <coshell/model/element_parameters.h>
+#include <coshell/model/inertia.h>
 #include <coshell/model/loads.h>
 #include <coshell/model/prescribed_motions.h>
 #include <coshell/model/quantities.h>
 #include <coshell/model/shell_problem.h>
 #include <coshell/solvers/linear_solver.h>
 #include <coshell/solvers/path_following.h>
+#include <coshell/solvers/time_integration.h>
 
 #include <deal.II/base/parameter_handler.h>
 
@@ -59,6 +61,8 @@ namespace coshell::driver
     std::string                  analysis_type_ = "linear static";
     model::PrescribedMotions     motions_;
     Stages                       stages_;
+    model::InertiaParameters     inertia_;
+    solvers::TimeIntegration     time_integration_;
     io::VtuOutput                output_;
     std::vector<io::LevelResult> levels_;
 
@@ -80,6 +84,14 @@ namespace coshell::driver
                           io::LevelResult     &result,
                           const std::string   &directory,
                           std::ostream        &log);
+    void run_dynamic_stage(const Stage         &stage,
+                           model::ShellProblem &problem,
+                           double               start_time,
+                           StagedOutput        &out,
+                           io::LevelResult     &result,
+                           const std::string   &directory,
+                           std::ostream        &log);
+    bool has_dynamic_stage() const;
     /// Supports less the released ones, plus the stage's motions.
     dealii::AffineConstraints<double>
     stage_constraints(const model::ShellModel &model, const Stage &stage) const;

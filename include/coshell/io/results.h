@@ -22,9 +22,13 @@ namespace coshell::io
     unsigned int  n_cells = 0, n_vertices = 0;
     unsigned long n_dofs = 0, n_inactive_dofs = 0;
     /// Krylov iterations of the linear solve (1 for a direct solver).
-    unsigned long                 linear_solver_iterations = 0;
-    PhaseTimes                    wall_time_s;
-    unsigned int                  load_steps = 0, newton_iterations = 0;
+    unsigned long linear_solver_iterations = 0;
+    PhaseTimes    wall_time_s;
+    unsigned int  load_steps = 0, newton_iterations = 0;
+    /// Dynamics: time steps, simulated time (s) and the wall time the time
+    /// stepping took (s), whose ratio is the real-time factor.
+    unsigned int                  steps            = 0;
+    double                        simulated_time_s = 0, dynamic_wall_time_s = 0;
     std::map<std::string, double> qoi, reference;
 
     /// |qoi - reference| / |reference| for every quantity with a reference.

@@ -107,11 +107,13 @@ namespace coshell::model
     double                                     time_ = 0, load_factor_ = 0;
     double acceleration_coefficient_ = 0, velocity_coefficient_ = 0;
     std::array<dealii::Vector<double>, 3> forces_;
-    bool                                  pending_ = false;
+    bool                                  pending_               = false;
+    double                                converged_force_scale_ = 0;
     PrescribedIncrements                  increments_;
     dealii::Vector<double>                global_force_;
 
     EvaluationPoint point() const;
+    double          current_force_scale() const;
     void            update_inhomogeneities();
     /// Runs the cell terms of the contributions 'use' selects.
     void assemble(const std::function<bool(const Contribution &)> &use,

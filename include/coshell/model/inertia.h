@@ -1,0 +1,80 @@
+#pragma once
+
+#include <coshell/element/mass.h>
+#include <coshell/model/contribution.h>
+#include <coshell/model/element_parameters.h>
+#include <coshell/model/shell_model.h>
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <string>
+
+namespace coshell::model
+{
+  /// prm subsection "Mass and damping".
+  struct InertiaParameters
+  {
+    element::MassMatrix mass_matrix           = element::MassMatrix::consistent;
+    double              rotary_inertia_factor = 1;
+    double              rayleigh_alpha = 0, rayleigh_beta = 0;
+    double              normal_drag = 0, tangential_drag = 0;
+    /// Muparser expressions of x, y, z (three each, ';'-separated).
+    std::string initial_velocity         = "0; 0; 0";
+    std::string initial_angular_velocity = "0; 0; 0";
+
+    static void declare_parameters(dealii::ParameterHandler &prm);
+    /// Throws std::invalid_argument naming the parameter.
+    void parse_parameters(dealii::ParameterHandler &prm);
+
+    bool damped() const;
+  };
+
+  /// Kinetic quantities of a configuration with its rates.
+  struct KineticMeasures
+  {
+    double               kinetic_energy = 0;
+    dealii::Tensor<1, 3> linear_momentum, angular_momentum; ///< about 0
+    /// v . C v of the Rayleigh damping and the drag (power, force*velocity).
+    double dissipation_power = 0;
+  };
+
+  /// Inertia forces -M a (consistent or lumped translational mass, lumped
+  /// isotropic rotary inertia, so no gyroscopic term), Rayleigh damping
+  /// -(alpha M + beta K) v with K the linear stiffness of the current flat
+  /// triangle (zero on rigid motions), and the viscous drag of the medium.
+  /// Rotational rates are material (Omega); their spatial forms R Omega
+  /// enter the forces.
+  class Inertia : public Contribution
+  {
+  public:
+    Inertia(const ShellModel &model, const InertiaParameters &parameters);
+
+    std::string name() const override;
+    ForceKind   kind() const override;
+    bool        has_cell_terms() const override;
+    void        add_cell(const CellIterator    &cell,
+                         const EvaluationPoint &point,
+                         CellContribution      &contribution,
+                         bool                   with_tangent) const override;
+    bool        symmetric_tangent() const override;
+
+    KineticMeasures measures(const ShellState &state) const;
+
+    /// Sets the velocities of 'state' from the initial-velocity expressions.
+    void set_initial_velocity(ShellState &state) const;
+
+  private:
+    const ShellModel       &model_;
+    InertiaParameters       parameters_;
+    element::MassProperties mass_;
+
+    /// The cell's rates in global axes (rotations spatial).
+    std::array<double, element::shell_dofs>
+    spatial_rates(const CellIterator           &cell,
+                  const ShellState             &state,
+                  const dealii::Vector<double> &rates) const;
+    dealii::FullMatrix<double>
+    damping(const element::SpatialTriangle   &current,
+            const dealii::FullMatrix<double> &mass) const;
+  };
+} // namespace coshell::model

@@ -1,0 +1,78 @@
+#pragma once
+
+#include <coshell/solvers/linear_solver.h>
+#include <coshell/solvers/newton.h>
+#include <coshell/solvers/nonlinear_problem.h>
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <functional>
+#include <ostream>
+#include <string>
+
+namespace coshell::solvers
+{
+  /// Implicit time integration of M(q) qdd + f_int(q, qd) = f_ext(t) on
+  /// R^3 x SO(3) per vertex (prm subsection "Time integration"):
+  /// - generalized alpha: the Lie-group generalized-alpha scheme of Bruls &
+  ///   Cardona (2010) in the form of Arnold & Bruls (2007): equilibrium at
+  ///   t_{n+1}, rotations updated R_{n+1} = R_n exp(h Delta Omega),
+  ///   second order, numerical damping set by the spectral radius rho_inf;
+  /// - implicit euler: backward Euler on the same group, first order;
+  /// - linearized implicit euler: one Newton correction of backward Euler
+  ///   per step (Baraff & Witkin 1998, as SOFA and the seed paper).
+  /// Time steps are cut on Newton failure and grown after easy steps.
+  class TimeIntegration
+  {
+  public:
+    static void declare_parameters(dealii::ParameterHandler &prm);
+    /// Throws std::invalid_argument naming the parameter.
+    void parse_parameters(dealii::ParameterHandler &prm);
+
+    struct StepRecord
+    {
+      unsigned int step; ///< counted over the whole run
+      double       time, dt;
+      unsigned int iterations;
+    };
+    using StepObserver = std::function<void(const StepRecord &)>;
+    using IterationObserver =
+        std::function<void(unsigned int step, const NewtonIteration &)>;
+
+    /// Integrates from the problem's current state (its velocities are
+    /// the initial ones; the initial acceleration is made consistent)
+    /// from 'start' to 'end'. 'first_step' numbers the steps. Returns the
+    /// number of steps taken. Throws NewtonFailure.
+    unsigned int run(EvolutionProblem        &problem,
+                     LinearSolver            &linear_solver,
+                     const NewtonParameters  &newton,
+                     double                   start,
+                     double                   end,
+                     unsigned int             first_step,
+                     const StepObserver      &on_step,
+                     const IterationObserver &on_iteration,
+                     std::ostream            &log) const;
+
+    const std::string &method() const;
+    double             end_time() const;
+    double             time_step() const;
+
+    /// The rates of one scheme as functions of the step increment.
+    struct Scheme;
+
+  private:
+    std::string  method_            = "generalized alpha";
+    double       time_step_         = 1e-3;
+    double       min_time_step_     = 1e-9;
+    double       max_time_step_     = 1e-3;
+    double       spectral_radius_   = 0.9;
+    double       end_time_          = 1;
+    unsigned int max_step_cuts_     = 12;
+    unsigned int easy_iterations_   = 4;
+    double       growth_factor_     = 1.5;
+    double       progress_interval_ = 5;
+
+    void initial_acceleration(EvolutionProblem &problem,
+                              LinearSolver     &linear_solver) const;
+  };
+} // namespace coshell::solvers

@@ -1,0 +1,58 @@
+#include <coshell/element/mass.h>
+
+namespace coshell::element
+{
+  using namespace dealii;
+
+  double vertex_rotary_inertia(double area, const MassProperties &mass)
+  {
+    const double h = mass.thickness;
+    return mass.rotary_inertia_factor * mass.density * h * h * h / 12 * area /
+           3;
+  }
+
+  FullMatrix<double> shell_mass(const SpatialTriangle &triangle,
+                                const MassProperties  &mass)
+  {
+    const double       A          = area(triangle);
+    const double       areal_mass = mass.density * mass.thickness * A;
+    FullMatrix<double> m(18, 18);
+    for (unsigned int a = 0; a < 3; ++a)
+      for (unsigned int b = 0; b < 3; ++b)
+      {
+        // Integral of L_a L_b over the triangle: A/12 (1 + delta_ab).
+        const double weight = mass.type == MassMatrix::lumped
+                                  ? (a == b ? 1.0 / 3 : 0.0)
+                                  : (a == b ? 2.0 / 12 : 1.0 / 12);
+        for (unsigned int d = 0; d < 3; ++d)
+          m(6 * a + d, 6 * b + d) = weight * areal_mass;
+      }
+    const double rotary = vertex_rotary_inertia(A, mass);
+    for (unsigned int a = 0; a < 3; ++a)
+      for (unsigned int d = 0; d < 3; ++d)
+        m(6 * a + 3 + d, 6 * a + 3 + d) = rotary;
+    return m;
+  }
+
+  FullMatrix<double> drag_matrix(const SpatialTriangle &triangle,
+                                 double                 normal_coefficient,
+                                 double                 tangential_coefficient)
+  {
+    Tensor<1, 3> n =
+        cross_product_3d(triangle[1] - triangle[0], triangle[2] - triangle[0]);
+    const double twice_area = n.norm();
+    if (twice_area == 0)
+      throw DegenerateTriangle("drag on a triangle of zero area");
+    n /= twice_area;
+    const double       third_area = twice_area / 6;
+    FullMatrix<double> c(9, 9);
+    for (unsigned int a = 0; a < 3; ++a)
+      for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int j = 0; j < 3; ++j)
+          c(3 * a + i, 3 * a + j) =
+              third_area *
+              (tangential_coefficient * (i == j ? 1.0 : 0.0) +
+               (normal_coefficient - tangential_coefficient) * n[i] * n[j]);
+    return c;
+  }
+} // namespace coshell::element

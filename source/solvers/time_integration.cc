@@ -1,0 +1,347 @@
+#include <coshell/solvers/time_integration.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+namespace coshell::solvers
+{
+  using namespace dealii;
+
+  /// The rates of a scheme as functions of the step increment q (in the
+  /// tangent space: translations, material rotation vectors).
+  struct TimeIntegration::Scheme
+  {
+    bool   euler = false, linearized = false;
+    double alpha_m = 0, alpha_f = 0, beta = 0.25, gamma = 0.5;
+    double h = 0;
+    /// Rates at the start of the step; a_n: generalized-alpha's
+    /// pseudo-acceleration.
+    Vector<double> v_n, vdot_n, a_n, a;
+
+    Scheme(const std::string &method, double rho_inf)
+        : euler(method != "generalized alpha"),
+          linearized(method == "linearized implicit euler")
+    {
+      // Chung & Hulbert (1993) parameters from the spectral radius.
+      alpha_m = (2 * rho_inf - 1) / (rho_inf + 1);
+      alpha_f = rho_inf / (rho_inf + 1);
+      gamma   = 0.5 + alpha_f - alpha_m;
+      beta    = 0.25 * (gamma + 0.5) * (gamma + 0.5);
+    }
+
+    void start(double step, const Vector<double> &v, const Vector<double> &vdot)
+    {
+      h      = step;
+      v_n    = v;
+      vdot_n = vdot;
+      if (a_n.size() != v.size())
+        a_n = vdot; // a consistent start: pseudo = true acceleration
+      a.reinit(v.size());
+    }
+
+    double acceleration_coefficient() const
+    {
+      return euler ? 1 / (h * h)
+                   : (1 - alpha_m) / ((1 - alpha_f) * h * h * beta);
+    }
+
+    double velocity_coefficient() const
+    {
+      return euler ? 1 / h : gamma / (h * beta);
+    }
+
+    /// The step increment to start Newton from.
+    void predictor(Vector<double> &q) const
+    {
+      if (linearized)
+      {
+        q = 0; // linearize about q_n, as Baraff & Witkin
+        return;
+      }
+      q.equ(h, v_n);
+      if (euler)
+        return;
+      // Predict vdot_{n+1} = vdot_n, i.e. this pseudo-acceleration.
+      Vector<double> a_predicted(vdot_n);
+      a_predicted.add(-alpha_m, a_n);
+      a_predicted /= 1 - alpha_m;
+      q.add(h * h * (0.5 - beta), a_n, h * h * beta, a_predicted);
+    }
+
+    void rates(const Vector<double> &q, Vector<double> &v, Vector<double> &vdot)
+    {
+      if (euler)
+      {
+        v.equ(1 / h, q);
+        vdot = v;
+        vdot -= v_n;
+        vdot /= h;
+        return;
+      }
+      a = q;
+      a.add(-h, v_n, -h * h * (0.5 - beta), a_n);
+      a /= h * h * beta;
+      v = v_n;
+      v.add(h * (1 - gamma), a_n, h * gamma, a);
+      vdot.equ(1 - alpha_m, a);
+      vdot.add(alpha_m, a_n, -alpha_f, vdot_n);
+      vdot /= 1 - alpha_f;
+    }
+
+    void accept()
+    {
+      if (!euler)
+        a_n = a;
+    }
+  };
+
+  namespace
+  {
+    /// The nonlinear problem of one time step: moving the configuration
+    /// moves the rates with it.
+    class StepProblem : public NonlinearProblem
+    {
+    public:
+      StepProblem(EvolutionProblem &problem, TimeIntegration::Scheme &scheme)
+          : problem_(problem), scheme_(scheme)
+      {
+      }
+      const SparsityPattern &sparsity() const override
+      {
+        return problem_.sparsity();
+      }
+      void evaluate(Vector<double> &r, SparseMatrix<double> *K) override
+      {
+        problem_.evaluate(r, K);
+      }
+      double force_scale() const override
+      {
+        return problem_.force_scale();
+      }
+      bool prescribed_increment_pending() const override
+      {
+        return problem_.prescribed_increment_pending();
+      }
+      void distribute(Vector<double> &x) const override
+      {
+        problem_.distribute(x);
+      }
+      void apply_increment(const Vector<double> &dx) override
+      {
+        problem_.apply_increment(dx);
+        update_rates();
+      }
+      double admissible_fraction(const Vector<double> &dx) const override
+      {
+        return problem_.admissible_fraction(dx);
+      }
+      void save() override
+      {
+        problem_.save();
+      }
+      void restore() override
+      {
+        problem_.restore();
+      }
+      bool symmetric_tangent() const override
+      {
+        return problem_.symmetric_tangent();
+      }
+      void update_rates()
+      {
+        problem_.step_increment(q_);
+        scheme_.rates(q_, problem_.velocity(), problem_.acceleration());
+      }
+
+    private:
+      EvolutionProblem        &problem_;
+      TimeIntegration::Scheme &scheme_;
+      Vector<double>           q_;
+    };
+  } // namespace
+
+  void TimeIntegration::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Time integration");
+    prm.declare_entry(
+        "Method", "generalized alpha",
+        Patterns::Selection(
+            "generalized alpha|implicit euler|linearized implicit euler"),
+        "generalized alpha: Lie-group generalized-alpha (second order, "
+        "numerical damping of the high frequencies set by Spectral "
+        "radius); implicit euler: backward Euler with full Newton (first "
+        "order, strongly damped); linearized implicit euler: one linear "
+        "solve per step (Baraff & Witkin 1998; SOFA and the seed paper).");
+    prm.declare_entry("Time step", "1e-3", Patterns::Double(),
+                      "Initial time step, s; > 0.");
+    prm.declare_entry("Minimum time step", "1e-9", Patterns::Double(),
+                      "The run stops with an error when a step must be cut "
+                      "below this, s.");
+    prm.declare_entry("Maximum time step", "1e-3", Patterns::Double(),
+                      "Steps grow after easy ones up to this, s.");
+    prm.declare_entry("Spectral radius", "0.9", Patterns::Double(0, 1),
+                      "rho_inf of generalized alpha (dimensionless, in [0, "
+                      "1]): 1 keeps every frequency (no numerical "
+                      "damping), 0 annihilates the highest in one step.");
+    prm.declare_entry("End time", "1", Patterns::Double(),
+                      "Duration of a scene with Analysis/Type = dynamic "
+                      "and no stages, s (stages give their own Duration).");
+    prm.declare_entry("Maximum step cuts", "12", Patterns::Integer(0),
+                      "How often in a row a failed step may be cut "
+                      "(dimensionless).");
+    prm.declare_entry("Easy step iterations", "4", Patterns::Integer(1),
+                      "A step converged in at most this many Newton "
+                      "iterations lets the next grow (dimensionless).");
+    prm.declare_entry("Step growth factor", "1.5", Patterns::Double(1),
+                      "Growth of the time step after an easy step "
+                      "(dimensionless).");
+    prm.declare_entry("Progress interval", "5", Patterns::Double(0),
+                      "Wall-clock seconds between progress lines (step, t, "
+                      "dt, iterations, real-time factor); 0: every step.");
+    prm.leave_subsection();
+  }
+
+  void TimeIntegration::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Time integration");
+    method_            = prm.get("Method");
+    time_step_         = prm.get_double("Time step");
+    min_time_step_     = prm.get_double("Minimum time step");
+    max_time_step_     = prm.get_double("Maximum time step");
+    spectral_radius_   = prm.get_double("Spectral radius");
+    end_time_          = prm.get_double("End time");
+    max_step_cuts_     = prm.get_integer("Maximum step cuts");
+    easy_iterations_   = prm.get_integer("Easy step iterations");
+    growth_factor_     = prm.get_double("Step growth factor");
+    progress_interval_ = prm.get_double("Progress interval");
+    prm.leave_subsection();
+    const std::string where = "Time integration/";
+    if (!(time_step_ > 0))
+      throw std::invalid_argument(where +
+                                  "Time step = " + short_number(time_step_) +
+                                  " must be positive");
+    if (!(min_time_step_ > 0))
+      throw std::invalid_argument(where + "Minimum time step must be positive");
+    if (min_time_step_ > max_time_step_)
+      throw std::invalid_argument(
+          where + "Minimum time step = " + short_number(min_time_step_) +
+          " exceeds Maximum time step = " + short_number(max_time_step_));
+    if (!(end_time_ > 0))
+      throw std::invalid_argument(where + "End time must be positive");
+  }
+
+  const std::string &TimeIntegration::method() const
+  {
+    return method_;
+  }
+
+  double TimeIntegration::end_time() const
+  {
+    return end_time_;
+  }
+
+  double TimeIntegration::time_step() const
+  {
+    return time_step_;
+  }
+
+  /// M vdot_0 = r(q_0, v_0, vdot = 0): the acceleration in equilibrium
+  /// with the initial forces, which second-order accuracy needs.
+  void TimeIntegration::initial_acceleration(EvolutionProblem &problem,
+                                             LinearSolver &linear_solver) const
+  {
+    problem.acceleration() = 0;
+    problem.set_rate_coefficients(0, 0);
+    Vector<double>       residual(problem.sparsity().n_rows());
+    SparseMatrix<double> mass(problem.sparsity());
+    problem.evaluate(residual, nullptr);
+    problem.mass_matrix(mass);
+    linear_solver.factorize(mass, true);
+    Vector<double> acceleration(residual.size());
+    linear_solver.solve(acceleration, residual);
+    problem.distribute(acceleration);
+    problem.acceleration() = acceleration;
+  }
+
+  unsigned int TimeIntegration::run(EvolutionProblem        &problem,
+                                    LinearSolver            &linear_solver,
+                                    const NewtonParameters  &newton_parameters,
+                                    double                   start,
+                                    double                   end,
+                                    unsigned int             first_step,
+                                    const StepObserver      &on_step,
+                                    const IterationObserver &on_iteration,
+                                    std::ostream            &log) const
+  {
+    Scheme         scheme(method_, spectral_radius_);
+    StepProblem    step_problem(problem, scheme);
+    const Newton   newton(newton_parameters, linear_solver);
+    StepController control({std::min(time_step_, max_time_step_),
+                            min_time_step_, max_time_step_, max_step_cuts_,
+                            easy_iterations_, growth_factor_, 0.5});
+    problem.set_time(start);
+    if (!scheme.euler)
+      initial_acceleration(problem, linear_solver);
+    problem.save();
+    const auto     wall_start    = std::chrono::steady_clock::now();
+    auto           last_progress = wall_start;
+    double         t             = start;
+    unsigned int   step          = first_step;
+    Vector<double> q(problem.sparsity().n_rows());
+    while (t < end - 1e-12 * std::max(1.0, std::abs(end)))
+    {
+      double h = std::min(control.size(), end - t);
+      if (end - t - h < 0.01 * h) // no sliver of a last step
+        h = end - t;
+      scheme.start(h, problem.velocity(), problem.acceleration());
+      problem.set_time(t + h);
+      problem.set_rate_coefficients(scheme.acceleration_coefficient(),
+                                    scheme.velocity_coefficient());
+      scheme.predictor(q);
+      problem.set_step_increment(q);
+      step_problem.update_rates();
+      const auto observe = [&](const NewtonIteration &record)
+      {
+        if (on_iteration)
+          on_iteration(step + 1, record);
+      };
+      try
+      {
+        const unsigned int iterations =
+            scheme.linearized
+                ? (newton.single_correction(step_problem, observe), 1u)
+                : newton.solve(step_problem, observe);
+        scheme.accept();
+        problem.save();
+        t += h;
+        ++step;
+        control.success(iterations);
+        on_step({step, t, h, iterations});
+        const auto   now = std::chrono::steady_clock::now();
+        const double wall =
+            std::chrono::duration<double>(now - wall_start).count();
+        if (std::chrono::duration<double>(now - last_progress).count() >=
+            progress_interval_)
+        {
+          log << "  step " << step << ", t = " << t << " s, dt = " << h
+              << " s, " << iterations << " iterations, real-time factor "
+              << (t - start) / std::max(wall, 1e-9) << '\n';
+          last_progress = now;
+        }
+      }
+      catch (const NewtonFailure &failure)
+      {
+        problem.restore();
+        control.failure(h,
+                        "time step from t = " + short_number(t) + " s to " +
+                            short_number(t + h) + " s",
+                        failure.what());
+        log << "  time step to t = " << t + h << " s failed (" << failure.what()
+            << "); cutting dt to " << control.size() << " s\n";
+      }
+    }
+    return step - first_step;
+  }
+} // namespace coshell::solvers

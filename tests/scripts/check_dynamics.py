@@ -1,0 +1,145 @@
+#!/usr/bin/python3
+"""Runs a dynamic coshell scene and checks its time_history.csv against
+references given here (only the rows of --stage N when given).
+
+  check_dynamics.py --coshell BIN --prm FILE --output DIR [--set A/B=v ...]
+     [--stage N]
+     [--period QOI T RTOL]      mean period between upward zero crossings of
+                                QOI - mean(QOI) is within RTOL of T
+     [--amplitude-change QOI MAX]  |peak of the last period / peak of the
+                                first - 1| <= MAX (peaks of |QOI - mean|)
+     [--amplitude-decay QOI MIN]   the same ratio is at most 1 - MIN (a
+                                scheme that must damp)
+     [--drift PREFIX MAX SCALE] for the vector PREFIX_x, _y, _z (or a single
+                                column PREFIX): max |c(t) - c(0)| / SCALE <= MAX;
+                                SCALE 'initial' uses |c(0)|
+     [--no-growth COLUMN RTOL]  COLUMN never exceeds its first value by more
+                                than RTOL of it (stability)
+     [--final QOI VALUE ATOL]   last value of QOI within ATOL of VALUE
+     [--report FILE]            append 'name,value' lines of what was measured
+Prints a line per check and 'N passed, M failed'; exits 1 on a failure.
+"""
+import argparse
+import csv
+import math
+import os
+import shutil
+import subprocess
+import sys
+
+from scene_runner import run_scene
+
+
+def columns(rows, name):
+    return [float(r[name]) for r in rows]
+
+
+def zero_crossings(t, x):
+    mean = sum(x) / len(x)
+    y = [v - mean for v in x]
+    return [t[i - 1] + (t[i] - t[i - 1]) * (-y[i - 1]) / (y[i] - y[i - 1])
+            for i in range(1, len(y)) if y[i - 1] < 0 <= y[i]]
+
+
+def period_peaks(t, x):
+    """Largest |x - mean| in the first and in the last full period."""
+    crossings = zero_crossings(t, x)
+    mean = sum(x) / len(x)
+    if len(crossings) < 3:
+        return None
+    def peak(start, end):
+        return max(abs(v - mean) for s, v in zip(t, x) if start <= s <= end)
+    return peak(crossings[0], crossings[1]), peak(crossings[-2], crossings[-1])
+
+
+def vector(rows, prefix):
+    if prefix in rows[0]:
+        return [[float(r[prefix])] for r in rows]
+    return [[float(r[f"{prefix}_{c}"]) for c in "xyz"] for r in rows]
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--coshell", required=True)
+    parser.add_argument("--prm", required=True)
+    parser.add_argument("--output", required=True)
+    parser.add_argument("--set", action="append", default=[])
+    parser.add_argument("--stage", type=int)
+    parser.add_argument("--period", nargs=3, action="append", default=[])
+    parser.add_argument("--amplitude-change", nargs=2, action="append", default=[])
+    parser.add_argument("--amplitude-decay", nargs=2, action="append", default=[])
+    parser.add_argument("--drift", nargs=3, action="append", default=[])
+    parser.add_argument("--no-growth", nargs=2, action="append", default=[])
+    parser.add_argument("--final", nargs=3, action="append", default=[])
+    parser.add_argument("--report")
+    args = parser.parse_args()
+
+    run_scene(args.coshell, args.prm, args.output, args.set)
+    with open(os.path.join(args.output, "time_history.csv")) as f:
+        rows = list(csv.DictReader(f))
+    if args.stage is not None:
+        rows = [r for r in rows if int(float(r["stage"])) == args.stage]
+    t = columns(rows, "time")
+    results, report = [], []
+
+    def check(ok, text, name=None, value=None):
+        print(("ok   " if ok else "FAIL ") + text)
+        results.append(ok)
+        if name is not None:
+            report.append(f"{name},{value:.8g}")
+
+    for qoi, period, rtol in args.period:
+        crossings = zero_crossings(t, columns(rows, qoi))
+        if len(crossings) < 2:
+            check(False, f"{qoi}: fewer than two zero crossings")
+            continue
+        measured = (crossings[-1] - crossings[0]) / (len(crossings) - 1)
+        error = abs(measured / float(period) - 1)
+        check(error <= float(rtol),
+              f"{qoi} period {measured:.6g} vs {float(period):.6g}: error "
+              f"{error:.3e} (tolerance {rtol})", f"period_{qoi}", measured)
+    for qoi, limit in args.amplitude_change + args.amplitude_decay:
+        peaks = period_peaks(t, columns(rows, qoi))
+        if peaks is None:
+            check(False, f"{qoi}: too few periods for an amplitude")
+            continue
+        ratio = peaks[1] / peaks[0]
+        if [qoi, limit] in args.amplitude_change:
+            check(abs(ratio - 1) <= float(limit),
+                  f"{qoi} amplitude last/first period {ratio:.6f} (allowed "
+                  f"change {limit})", f"amplitude_ratio_{qoi}", ratio)
+        else:
+            check(ratio <= 1 - float(limit),
+                  f"{qoi} amplitude last/first period {ratio:.6f} (must "
+                  f"decay by at least {limit})", f"amplitude_ratio_{qoi}", ratio)
+    for prefix, limit, scale in args.drift:
+        values = vector(rows, prefix)
+        first = values[0]
+        norm = math.sqrt(sum(c * c for c in first))
+        reference = norm if scale == "initial" else float(scale)
+        drift = max(math.sqrt(sum((a - b) ** 2 for a, b in zip(v, first)))
+                    for v in values) / reference
+        check(drift <= float(limit),
+              f"{prefix} drift {drift:.3e} of {reference:.4g} (limit {limit})",
+              f"drift_{prefix}", drift)
+    for column, rtol in args.no_growth:
+        values = columns(rows, column)
+        growth = (max(values) - values[0]) / abs(values[0])
+        check(growth <= float(rtol),
+              f"{column} growth {growth:.3e} of its first value (limit {rtol})",
+              f"growth_{column}", growth)
+    for qoi, value, atol in args.final:
+        last = float(rows[-1][qoi])
+        check(abs(last - float(value)) <= float(atol),
+              f"{qoi} final {last:.6g} vs {value} (tolerance {atol})",
+              f"final_{qoi}", last)
+    if args.report:
+        with open(args.report, "a") as f:
+            f.write("".join(line + "\n" for line in report))
+    passed = sum(results)
+    print(f"{passed} passed, {len(results) - passed} failed")
+    sys.exit(0 if all(results) else 1)
+
+
+if __name__ == "__main__":
+    main()
