@@ -441,12 +441,16 @@ namespace coshell::driver
                        problem.load_factor(), record.relative_residual,
                        record.correction_norm, record.relative_energy});
     };
-    const auto wall = std::chrono::steady_clock::now();
+    const auto   wall            = std::chrono::steady_clock::now();
+    const double solver_before   = linear_solver_.seconds();
+    const double assembly_before = problem.assembly_seconds();
     time_integration_.run(problem, linear_solver_, path_following_.newton(),
                           start_time, start_time + stage.duration, out.step,
                           on_step, on_iteration, log);
     result.simulated_time_s += stage.duration;
     result.dynamic_wall_time_s += seconds_since(wall);
+    result.dynamic_assembly_s += problem.assembly_seconds() - assembly_before;
+    result.dynamic_linear_solver_s += linear_solver_.seconds() - solver_before;
   }
 
   void Scene::run_static_stage(const Stage         &stage,

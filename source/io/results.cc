@@ -41,6 +41,12 @@ namespace coshell::io
       json["steps"]            = steps;
       json["simulated_time_s"] = simulated_time_s;
       // Simulated time over the wall time of the time stepping.
+      Json &stepping            = json["time_stepping_s"];
+      stepping["total"]         = dynamic_wall_time_s;
+      stepping["assembly"]      = dynamic_assembly_s;
+      stepping["linear_solver"] = dynamic_linear_solver_s;
+      stepping["other"] =
+          dynamic_wall_time_s - dynamic_assembly_s - dynamic_linear_solver_s;
       json["real_time_factor"] =
           simulated_time_s / std::max(dynamic_wall_time_s, 1e-12);
     }

@@ -2,6 +2,7 @@
 
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 
+#include <chrono>
 #include <cmath>
 
 namespace coshell::model
@@ -120,9 +121,15 @@ namespace coshell::model
         });
   }
 
+  double ShellProblem::assembly_seconds() const
+  {
+    return assembly_seconds_;
+  }
+
   void ShellProblem::evaluate(Vector<double>       &residual,
                               SparseMatrix<double> *tangent)
   {
+    const auto start = std::chrono::steady_clock::now();
     update_inhomogeneities();
     residual = 0;
     if (tangent)
@@ -143,6 +150,9 @@ namespace coshell::model
     }
     homogeneous_.condense(global_force_);
     residual += global_force_;
+    assembly_seconds_ +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+            .count();
   }
 
   double ShellProblem::current_force_scale() const

@@ -13,6 +13,7 @@
 
 #include <Teuchos_ParameterList.hpp>
 
+#include <chrono>
 #include <stdexcept>
 
 namespace coshell::solvers
@@ -109,9 +110,32 @@ namespace coshell::solvers
     prm.leave_subsection();
   }
 
+  namespace
+  {
+    /// Adds the wall time of a scope to a counter.
+    struct ScopeTimer
+    {
+      double                               &total;
+      std::chrono::steady_clock::time_point start =
+          std::chrono::steady_clock::now();
+      ~ScopeTimer()
+      {
+        total += std::chrono::duration<double>(
+                     std::chrono::steady_clock::now() - start)
+                     .count();
+      }
+    };
+  } // namespace
+
+  double LinearSolver::seconds() const
+  {
+    return seconds_;
+  }
+
   void LinearSolver::factorize(const SparseMatrix<double> &matrix,
                                bool                        symmetric)
   {
+    const ScopeTimer timer{seconds_};
     backend_->using_cholmod = method_ == "cholmod" && symmetric;
     if (backend_->using_cholmod)
     {
@@ -193,6 +217,7 @@ namespace coshell::solvers
 
   void LinearSolver::solve(Vector<double> &x, const Vector<double> &b)
   {
+    const ScopeTimer timer{seconds_};
     if (backend_->using_cholmod)
     {
       backend_->cholmod.solve(x, b);

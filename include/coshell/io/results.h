@@ -27,8 +27,10 @@ namespace coshell::io
     unsigned int  load_steps = 0, newton_iterations = 0;
     /// Dynamics: time steps, simulated time (s) and the wall time the time
     /// stepping took (s), whose ratio is the real-time factor.
-    unsigned int                  steps            = 0;
-    double                        simulated_time_s = 0, dynamic_wall_time_s = 0;
+    unsigned int steps            = 0;
+    double       simulated_time_s = 0, dynamic_wall_time_s = 0;
+    /// Of that wall time: residual/tangent assembly and linear solver.
+    double dynamic_assembly_s = 0, dynamic_linear_solver_s = 0;
     std::map<std::string, double> qoi, reference;
 
     /// |qoi - reference| / |reference| for every quantity with a reference.

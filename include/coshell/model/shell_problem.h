@@ -77,6 +77,9 @@ namespace coshell::model
                                double velocity_coefficient) override;
     void mass_matrix(dealii::SparseMatrix<double> &mass) override;
 
+    /// Wall-clock seconds spent in evaluate() so far (assembly).
+    double assembly_seconds() const;
+
     const ShellState                        &state() const;
     const ShellModel                        &model() const;
     const dealii::AffineConstraints<double> &constraints() const;
@@ -109,6 +112,7 @@ namespace coshell::model
     std::array<dealii::Vector<double>, 3> forces_;
     bool                                  pending_               = false;
     double                                converged_force_scale_ = 0;
+    double                                assembly_seconds_      = 0;
     PrescribedIncrements                  increments_;
     dealii::Vector<double>                global_force_;
 

@@ -46,12 +46,15 @@ namespace coshell::solvers
     const std::string &method() const;
     /// Iterations of the last solve (1 for a direct solver).
     unsigned int last_iterations() const;
+    /// Wall-clock seconds spent in factorize() and solve() so far.
+    double seconds() const;
 
   private:
     std::string  method_                     = "cholmod";
     double       tolerance_                  = 1e-10;
     unsigned int max_iterations_             = 10000;
     unsigned int last_iterations_            = 0;
+    double       seconds_                    = 0;
     bool         rigid_body_near_null_space_ = true;
     std::string  amg_smoother_               = "Chebyshev";
     unsigned int amg_smoother_sweeps_        = 2;
