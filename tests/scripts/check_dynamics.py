@@ -16,7 +16,8 @@ references given here (only the rows of --stage N when given).
      [--no-growth COLUMN RTOL]  COLUMN never exceeds its first value by more
                                 than RTOL of it (stability)
      [--final QOI VALUE ATOL]   last value of QOI within ATOL of VALUE
-     [--report FILE]            append 'name,value' lines of what was measured
+     [--report FILE]            append 'test,name,value' lines of what was
+                                measured (test = the output directory's name)
 Prints a line per check and 'N passed, M failed'; exits 1 on a failure.
 """
 import argparse
@@ -86,7 +87,7 @@ def main():
         print(("ok   " if ok else "FAIL ") + text)
         results.append(ok)
         if name is not None:
-            report.append(f"{name},{value:.8g}")
+            report.append(f"{os.path.basename(args.output)},{name},{value:.8g}")
 
     for qoi, period, rtol in args.period:
         crossings = zero_crossings(t, columns(rows, qoi))
