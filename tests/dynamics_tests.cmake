@@ -117,7 +117,7 @@ coshell_dynamics_test(stages.strip_roll_up_then_release
 set(vibration ${COSHELL_PRM}/${cantilever})
 coshell_bad_input_test(negative_density "Material: density = -1 must be non-negative"
   ${vibration} --set "Material/Density=-1")
-coshell_bad_input_test(dynamics_without_mass "dynamics needs mass: Material/Density must be positive"
+coshell_bad_input_test(dynamics_without_mass "dynamics and modes need mass: Material/Density must be positive"
   ${vibration} --set "Material/Density=0")
 coshell_bad_input_test(negative_time_step "Time integration/Time step = -0.1 must be positive"
   ${vibration} --set "Time integration/Time step=-0.1")
@@ -126,3 +126,18 @@ coshell_bad_input_test(minimum_above_maximum_step "Minimum time step = 0.1 excee
   --set "Time integration/Maximum time step=0.01")
 coshell_bad_input_test(unparsable_initial_velocity "Initial velocity: cannot parse"
   ${vibration} --set "Mass and damping/Initial velocity=1$<SEMICOLON> 2$<SEMICOLON> (")
+
+# Cantilever plate natural frequencies against Leissa (1969), Table 4.41
+# (nu = 0.3, lambda^2 = omega here): within 1.5 % at the finest level (32 x
+# 32 crossed, 4096 triangles), with the consistent and the lumped mass.
+foreach(mass consistent lumped)
+  coshell_scene_test(modes.cantilever_plate.${mass}
+    dynamics/cantilever_plate_modes.prm LABELS dynamics
+    ARGS --set "Mass and damping/Mass matrix=${mass}" --set ${no_vtu}
+         --value omega_1 3.492 0.015 --value omega_2 8.525 0.015
+         --value omega_3 21.43 0.015 --value omega_4 27.33 0.015
+         --value omega_5 31.11 0.015)
+endforeach()
+coshell_bad_input_test(modes_of_a_free_plate_without_shift "rigid-body motion.s. free"
+  ${COSHELL_PRM}/dynamics/cantilever_plate_modes.prm
+  --set "Boundary conditions/Conditions=")

@@ -10,6 +10,7 @@
 #include <coshell/model/shell_problem.h>
 #include <coshell/model/shell_state.h>
 #include <coshell/solvers/linear_static.h>
+#include <coshell/solvers/modal_analysis.h>
 #include <coshell/solvers/parallel_environment.h>
 
 #include <chrono>
@@ -114,17 +115,29 @@ namespace coshell::driver
     solvers::PathFollowing::declare_parameters(prm);
     model::PrescribedMotions::declare_parameters(prm);
     model::InertiaParameters::declare_parameters(prm);
+    prm.enter_subsection("Modal analysis");
+    prm.declare_entry("Number of modes", "6", Patterns::Integer(1),
+                      "Analysis/Type = modes: how many of the lowest natural "
+                      "frequencies to compute (dimensionless).");
+    prm.declare_entry("Shift", "0", Patterns::Double(),
+                      "sigma of the shift-invert Lanczos iteration, in 1/s^2 "
+                      "(omega^2 units): the modes nearest it are found. A "
+                      "negative value lets an unsupported structure (with "
+                      "rigid-body modes) be analysed.");
+    prm.leave_subsection();
     solvers::TimeIntegration::declare_parameters(prm);
     Stages::declare_parameters(prm);
     prm.enter_subsection("Analysis");
     prm.declare_entry(
         "Type", "linear static",
-        Patterns::Selection("linear static|nonlinear static|dynamic"),
+        Patterns::Selection("linear static|nonlinear static|dynamic|modes"),
         "linear static: one linear solve (Element/Formulation = linear); "
         "nonlinear static: the equilibrium path by Newton (subsection "
         "Nonlinear solver), with linear or co-rotational kinematics; "
         "dynamic: implicit time integration (subsections Time "
-        "integration, Mass and damping). Stages (subsections Stage k) "
+        "integration, Mass and damping); modes: the lowest natural "
+        "frequencies and mode shapes of the undeformed shell (subsection "
+        "Modal analysis; modes.csv). Stages (subsections Stage k) "
         "give each stage its own type instead.");
     prm.leave_subsection();
     io::VtuOutput::declare_parameters(prm);
@@ -148,6 +161,10 @@ namespace coshell::driver
     prm.leave_subsection();
     motions_.parse_parameters(prm);
     inertia_.parse_parameters(prm);
+    prm.enter_subsection("Modal analysis");
+    n_modes_     = prm.get_integer("Number of modes");
+    modal_shift_ = prm.get_double("Shift");
+    prm.leave_subsection();
     time_integration_.parse_parameters(prm);
     Stage single;
     single.analysis = analysis_type_;
@@ -268,7 +285,8 @@ namespace coshell::driver
     static const std::map<std::string, AnalysisRunner> runners = {
         {"linear static", &Scene::solve_linear},
         {"nonlinear static", &Scene::run_stages},
-        {"dynamic", &Scene::run_stages}};
+        {"dynamic", &Scene::run_stages},
+        {"modes", &Scene::solve_modes}};
     return runners;
   }
 
@@ -282,10 +300,12 @@ namespace coshell::driver
 
   void Scene::check_analysis_choice() const
   {
-    if (has_dynamic_stage() && !(element_.material.density > 0))
+    if ((has_dynamic_stage() || analysis_type_ == "modes") &&
+        !(element_.material.density > 0))
       throw std::invalid_argument(
-          "dynamics needs mass: Material/Density must be positive");
-    if (analysis_type_ == "linear static" &&
+          "dynamics and modes need mass: Material/Density must be "
+          "positive");
+    if ((analysis_type_ == "linear static" || analysis_type_ == "modes") &&
         (stages_.staged() || !motions_.empty()))
       throw std::invalid_argument(
           "Analysis/Type = linear static runs no stages and no prescribed "
@@ -325,6 +345,60 @@ namespace coshell::driver
                    "tangent, or a follower pressure)";
     }
   } // namespace
+
+  /// The lowest natural frequencies and mode shapes of the undeformed
+  /// configuration: K x = omega^2 M x with the supports (modes.csv, one
+  /// VTU per mode, omega_k in the quantities of interest).
+  io::LevelResult Scene::solve_modes(const model::ShellModel &model,
+                                     const std::string       &directory,
+                                     std::ostream            &log)
+  {
+    io::LevelResult           result;
+    auto                      phase = std::chrono::steady_clock::now();
+    AffineConstraints<double> constraints;
+    boundary_conditions_.make_constraints(model, constraints);
+    constraints.close();
+    if (modal_shift_ == 0)
+      model::check_supports(model, constraints);
+    model::ShellState                                 state(model, false);
+    std::vector<std::unique_ptr<model::Contribution>> inertia;
+    inertia.push_back(std::make_unique<model::Inertia>(model, inertia_));
+    model::ShellProblem  problem(model, state, constraints, std::move(inertia));
+    SparseMatrix<double> stiffness(problem.sparsity()),
+        mass(problem.sparsity());
+    model.assemble_stiffness(constraints, stiffness);
+    problem.mass_matrix(mass);
+    // Constrained rows: no mass, so their eigenvalues go to infinity.
+    for (unsigned int i = 0; i < mass.m(); ++i)
+      if (constraints.is_constrained(i))
+        mass.diag_element(i) = 0;
+    result.wall_time_s.assemble = seconds_since(phase);
+
+    phase = std::chrono::steady_clock::now();
+    std::vector<double>         eigenvalues;
+    std::vector<Vector<double>> modes;
+    solvers::lowest_modes(stiffness, mass, linear_solver_, modal_shift_,
+                          n_modes_, eigenvalues, modes);
+    result.wall_time_s.solve = seconds_since(phase);
+
+    phase = std::chrono::steady_clock::now();
+    std::ostringstream csv;
+    csv << "mode,frequency_hz,omega_rad_s\n" << std::setprecision(12);
+    for (unsigned int k = 0; k < modes.size(); ++k)
+    {
+      const double omega = std::sqrt(std::max(eigenvalues[k], 0.0));
+      csv << k + 1 << ',' << omega / (2 * numbers::PI) << ',' << omega << '\n';
+      result.qoi["omega_" + std::to_string(k + 1)] = omega;
+      log << "  mode " << k + 1 << ": omega = " << omega
+          << " rad/s, f = " << omega / (2 * numbers::PI) << " Hz\n";
+      output_.write(model, modes[k], model.resultants(modes[k]), directory,
+                    "mode-" + std::to_string(k + 1), k + 1);
+    }
+    std::filesystem::create_directories(directory);
+    io::write_file_atomically(directory + "/modes.csv", csv.str());
+    result.wall_time_s.output = seconds_since(phase);
+    return result;
+  }
 
   AffineConstraints<double>
   Scene::stage_constraints(const model::ShellModel &model,

@@ -63,6 +63,8 @@ namespace coshell::driver
     Stages                       stages_;
     model::InertiaParameters     inertia_;
     solvers::TimeIntegration     time_integration_;
+    unsigned int                 n_modes_     = 6;
+    double                       modal_shift_ = 0;
     io::VtuOutput                output_;
     std::vector<io::LevelResult> levels_;
 
@@ -78,20 +80,23 @@ namespace coshell::driver
                                const std::string       &directory,
                                std::ostream            &log);
     struct StagedOutput;
-    void run_static_stage(const Stage         &stage,
-                          model::ShellProblem &problem,
-                          StagedOutput        &out,
-                          io::LevelResult     &result,
-                          const std::string   &directory,
-                          std::ostream        &log);
-    void run_dynamic_stage(const Stage         &stage,
-                           model::ShellProblem &problem,
-                           double               start_time,
-                           StagedOutput        &out,
-                           io::LevelResult     &result,
-                           const std::string   &directory,
-                           std::ostream        &log);
-    bool has_dynamic_stage() const;
+    void            run_static_stage(const Stage         &stage,
+                                     model::ShellProblem &problem,
+                                     StagedOutput        &out,
+                                     io::LevelResult     &result,
+                                     const std::string   &directory,
+                                     std::ostream        &log);
+    void            run_dynamic_stage(const Stage         &stage,
+                                      model::ShellProblem &problem,
+                                      double               start_time,
+                                      StagedOutput        &out,
+                                      io::LevelResult     &result,
+                                      const std::string   &directory,
+                                      std::ostream        &log);
+    bool            has_dynamic_stage() const;
+    io::LevelResult solve_modes(const model::ShellModel &model,
+                                const std::string       &directory,
+                                std::ostream            &log);
     /// Supports less the released ones, plus the stage's motions.
     dealii::AffineConstraints<double>
     stage_constraints(const model::ShellModel &model, const Stage &stage) const;
