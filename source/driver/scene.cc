@@ -216,16 +216,23 @@ namespace coshell::driver
     return result.to_json();
   }
 
+  AffineConstraints<double>
+  Scene::support_constraints(const model::ShellModel &model) const
+  {
+    AffineConstraints<double> constraints;
+    boundary_conditions_.make_constraints(model, constraints);
+    constraints.close();
+    return constraints;
+  }
+
   io::LevelResult Scene::solve_linear(const model::ShellModel &model,
                                       const std::string       &directory,
                                       std::ostream            &log)
   {
-    io::LevelResult           result;
-    auto                      phase = std::chrono::steady_clock::now();
-    AffineConstraints<double> constraints;
-    boundary_conditions_.make_constraints(model, constraints);
-    constraints.close();
-    solvers::LinearStatic analysis(model, constraints);
+    io::LevelResult                 result;
+    auto                            phase = std::chrono::steady_clock::now();
+    const AffineConstraints<double> constraints = support_constraints(model);
+    solvers::LinearStatic           analysis(model, constraints);
     result.wall_time_s.setup = seconds_since(phase);
 
     phase = std::chrono::steady_clock::now();
@@ -353,11 +360,9 @@ namespace coshell::driver
                                      const std::string       &directory,
                                      std::ostream            &log)
   {
-    io::LevelResult           result;
-    auto                      phase = std::chrono::steady_clock::now();
-    AffineConstraints<double> constraints;
-    boundary_conditions_.make_constraints(model, constraints);
-    constraints.close();
+    io::LevelResult                 result;
+    auto                            phase = std::chrono::steady_clock::now();
+    const AffineConstraints<double> constraints = support_constraints(model);
     if (modal_shift_ == 0)
       model::check_supports(model, constraints);
     model::ShellState                                 state(model, false);
@@ -421,6 +426,11 @@ namespace coshell::driver
   /// The files a staged run writes as it goes.
   struct Scene::StagedOutput
   {
+    StagedOutput(io::CsvFile &&curve, io::CsvFile &&history)
+        : curve(std::move(curve)), history(std::move(history))
+    {
+    }
+
     io::CsvFile                curve, history;
     std::optional<io::CsvFile> time_history;
     unsigned int               step = 0, last_written = 0;
@@ -581,14 +591,14 @@ namespace coshell::driver
     const bool      finite =
         element_.formulation == model::Formulation::corotational;
     model::ShellState state(model, finite);
-    StagedOutput      out{
-        io::CsvFile(directory + "/load_displacement.csv",
+    StagedOutput      out(
+             io::CsvFile(directory + "/load_displacement.csv",
                          with_quantities({"step", "load_factor", "iterations"},
                                          quantities_.evaluate(model, state.values()),
                                          {"stage", "time"})),
-        io::CsvFile(directory + "/newton_history.csv",
+             io::CsvFile(directory + "/newton_history.csv",
                          {"step", "iteration", "load_factor", "relative_residual",
-                          "correction_norm", "relative_energy"})};
+                          "correction_norm", "relative_energy"}));
     if (has_dynamic_stage())
     {
       out.time_history.emplace(

@@ -97,6 +97,9 @@ namespace coshell::driver
     io::LevelResult solve_modes(const model::ShellModel &model,
                                 const std::string       &directory,
                                 std::ostream            &log);
+    /// The supports of Boundary conditions, closed.
+    dealii::AffineConstraints<double>
+    support_constraints(const model::ShellModel &model) const;
     /// Supports less the released ones, plus the stage's motions.
     dealii::AffineConstraints<double>
     stage_constraints(const model::ShellModel &model, const Stage &stage) const;
