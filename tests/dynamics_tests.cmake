@@ -141,3 +141,17 @@ endforeach()
 coshell_bad_input_test(modes_of_a_free_plate_without_shift "rigid-body motion.s. free"
   ${COSHELL_PRM}/dynamics/cantilever_plate_modes.prm
   --set "Boundary conditions/Conditions=")
+
+# Energy bookkeeping on the flapping plate under gravity (co-rotational,
+# rho_inf = 1): total energy - work of the loads + dissipated energy stays
+# constant within 0.1 % of the work done, undamped and with Rayleigh mass
+# damping plus normal and tangential drag.
+coshell_dynamics_test(dynamics.flapping_plate.energy_balance
+  dynamics/flapping_plate.prm
+  ARGS --set "Time integration/Spectral radius=1" --energy-balance 1e-3)
+coshell_dynamics_test(dynamics.flapping_plate.energy_balance_damped
+  dynamics/flapping_plate.prm
+  ARGS --set "Time integration/Spectral radius=1"
+       --set "Mass and damping/Rayleigh mass coefficient=10"
+       --set "Mass and damping/Normal drag=1e-8"
+       --set "Mass and damping/Tangential drag=1e-9" --energy-balance 1e-3)

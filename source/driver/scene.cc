@@ -436,10 +436,11 @@ namespace coshell::driver
     unsigned int               step = 0, last_written = 0;
     /// Energy bookkeeping of the dynamic stages: work of the loads and
     /// reactions, energy dissipated by damping and drag (trapezoidal in
-    /// time), and the generalized force and dissipation power of the last
-    /// step.
-    double         external_work = 0, dissipated_energy = 0, power = 0;
-    Vector<double> generalized_force;
+    /// time), and the working and damping forces of the last step. Both
+    /// works use the trapezoidal rule on the step increment, the rule the
+    /// time integrator itself conserves energy with at rho_inf = 1.
+    double         external_work = 0, dissipated_energy = 0;
+    Vector<double> generalized_force, damping_force;
   };
 
   namespace
@@ -477,7 +478,9 @@ namespace coshell::driver
     problem.set_time(start_time);
     problem.evaluate(residual, nullptr);
     working_forces(problem, out.generalized_force);
-    out.power = inertia->measures(state).dissipation_power;
+    out.damping_force.reinit(model.n_dofs());
+    inertia->measures(state, &out.damping_force);
+    Vector<double> damping_force(model.n_dofs());
 
     const auto on_step = [&](const solvers::TimeIntegration::StepRecord &record)
     {
@@ -485,11 +488,12 @@ namespace coshell::driver
       working_forces(problem, g);
       problem.state().step_increment(q); // relative to the previous save
       out.external_work += 0.5 * ((g * q) + (out.generalized_force * q));
-      out.generalized_force                = g;
-      const model::KineticMeasures kinetic = inertia->measures(state);
+      out.generalized_force = g;
+      const model::KineticMeasures kinetic =
+          inertia->measures(state, &damping_force);
       out.dissipated_energy +=
-          0.5 * record.dt * (out.power + kinetic.dissipation_power);
-      out.power                  = kinetic.dissipation_power;
+          0.5 * ((damping_force * q) + (out.damping_force * q));
+      out.damping_force          = damping_force;
       const double strain_energy = internal->strain_energy(state);
       result.qoi                 = quantities_.evaluate(model, state.values());
       std::vector<double> row    = {double(step),

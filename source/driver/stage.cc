@@ -1,4 +1,5 @@
 #include <coshell/driver/stage.h>
+#include <coshell/io/expressions.h>
 
 #include <deal.II/base/function_parser.h>
 #include <deal.II/base/utilities.h>
@@ -44,17 +45,8 @@ namespace coshell::driver
     std::function<double(double, double)>
     parse_load_factor(const std::string &expression, const std::string &where)
     {
-      auto function = std::make_shared<FunctionParser<2>>(1);
-      try
-      {
-        function->initialize("t,s", expression, {{"pi", numbers::PI}});
-        function->value(Point<2>(0, 0));
-      }
-      catch (...)
-      {
-        throw std::invalid_argument(where + ": cannot parse '" + expression +
-                                    "' as a function of t and s");
-      }
+      std::shared_ptr<FunctionParser<2>> function = io::parse_expressions<2>(
+          expression, 1, "t,s", false, "t and s", where);
       return [function](double t, double s)
       { return function->value(Point<2>(t, s)); };
     }

@@ -1,4 +1,5 @@
 #include <coshell/element/shell_element.h>
+#include <coshell/io/expressions.h>
 #include <coshell/model/inertia.h>
 #include <coshell/model/internal_force.h>
 
@@ -14,27 +15,12 @@ namespace coshell::model
 
   namespace
   {
-    /// Three muparser expressions of x, y, z; evaluated once to check.
+    /// Three muparser expressions of x, y, z.
     std::unique_ptr<FunctionParser<3>> vector_field(const std::string &text,
                                                     const std::string &where)
     {
-      const auto expressions = Utilities::split_string_list(text, ';');
-      if (expressions.size() != 3)
-        throw std::invalid_argument(where + ": '" + text +
-                                    "' must be three expressions of x, y, z "
-                                    "separated by ';'");
-      auto field = std::make_unique<FunctionParser<3>>(3);
-      try
-      {
-        field->initialize("x,y,z", expressions, {{"pi", numbers::PI}});
-        Vector<double> value(3);
-        field->vector_value(Point<3>(), value);
-      }
-      catch (...)
-      {
-        throw std::invalid_argument(where + ": cannot parse '" + text + "'");
-      }
-      return field;
+      return io::parse_expressions<3>(text, 3, "x,y,z", false, "x, y, z",
+                                      where);
     }
 
     void require_non_negative(double value, const std::string &name)
@@ -222,9 +208,12 @@ namespace coshell::model
       contribution.matrix.add(point.velocity_coefficient, c);
   }
 
-  KineticMeasures Inertia::measures(const ShellState &state) const
+  KineticMeasures Inertia::measures(const ShellState &state,
+                                    Vector<double>   *damping_force) const
   {
     KineticMeasures result;
+    if (damping_force)
+      *damping_force = 0;
     for (const auto &cell : model_.dof_handler().active_cell_iterators())
     {
       const FullMatrix<double> mass =
@@ -249,12 +238,13 @@ namespace coshell::model
       }
       for (unsigned int i = 0; i < element::shell_dofs; ++i)
         result.kinetic_energy += 0.5 * velocity[i] * momentum[i];
-      if (parameters_.damped())
+      if (parameters_.damped() && damping_force)
       {
         const FullMatrix<double> c = damping(current, mass);
         for (unsigned int i = 0; i < element::shell_dofs; ++i)
           for (unsigned int j = 0; j < element::shell_dofs; ++j)
-            result.dissipation_power += velocity[i] * c(i, j) * velocity[j];
+            (*damping_force)[cell->vertex_dof_index(i / 6, i % 6)] +=
+                c(i, j) * velocity[j];
       }
     }
     return result;

@@ -1,4 +1,5 @@
 #include <coshell/element/corotational.h>
+#include <coshell/io/expressions.h>
 #include <coshell/model/prescribed_motions.h>
 
 #include <deal.II/base/utilities.h>
@@ -17,32 +18,6 @@ namespace coshell::model
     std::string motion_section(unsigned int number)
     {
       return "Motion " + std::to_string(number);
-    }
-
-    /// A muparser function of t with 'n' components separated by ';'.
-    /// Evaluated once here, so an unparsable expression fails now.
-    std::shared_ptr<FunctionParser<1>> parse_function(const std::string &text,
-                                                      unsigned int       n,
-                                                      const std::string &where)
-    {
-      const auto expressions = Utilities::split_string_list(text, ';');
-      if (expressions.size() != n)
-        throw std::invalid_argument(where + ": '" + text + "' must be " +
-                                    std::to_string(n) +
-                                    " expression(s) of t separated by ';'");
-      auto function = std::make_shared<FunctionParser<1>>(n);
-      try
-      {
-        function->initialize("x,t", expressions, {{"pi", numbers::PI}}, true);
-        Vector<double> values(n);
-        function->vector_value(Point<1>(), values);
-      }
-      catch (const std::exception &error)
-      {
-        throw std::invalid_argument(where + ": cannot parse '" + text +
-                                    "' as function(s) of t");
-      }
-      return function;
     }
 
     Tensor<1, 3> three_numbers(const std::string &text,
@@ -176,9 +151,11 @@ namespace coshell::model
           parse_components(prm.get("Components"), motion,
                            where + "/Components");
           motion.translation =
-              parse_function(prm.get("Translation"), 3, where + "/Translation");
-          motion.angle = parse_function(prm.get("Rotation angle"), 1,
-                                        where + "/Rotation angle");
+              io::parse_expressions<1>(prm.get("Translation"), 3, "x,t", true,
+                                       "t", where + "/Translation");
+          motion.angle =
+              io::parse_expressions<1>(prm.get("Rotation angle"), 1, "x,t",
+                                       true, "t", where + "/Rotation angle");
           motion.axis =
               three_numbers(prm.get("Rotation axis"), where + "/Rotation axis");
           if (motion.axis.norm() == 0)

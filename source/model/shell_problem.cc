@@ -24,6 +24,7 @@ namespace coshell::model
     for (auto &force : forces_)
       force.reinit(model_.n_dofs());
     global_force_.reinit(model_.n_dofs());
+    one_global_force_.reinit(model_.n_dofs());
     set_path_parameter(0);
   }
 
@@ -138,15 +139,15 @@ namespace coshell::model
       force = 0;
     const EvaluationPoint at = point();
     assemble([](const Contribution &) { return true; }, at, &residual, tangent);
+    // Each contribution's global terms, kept by kind for the force scale.
     global_force_ = 0;
     for (const auto &contribution : contributions_)
     {
-      Vector<double> &force =
-          forces_[static_cast<unsigned int>(contribution->kind())];
-      const Vector<double> before(force);
-      contribution->add_global(at, force);
-      global_force_ += force;
-      global_force_ -= before;
+      one_global_force_ = 0;
+      contribution->add_global(at, one_global_force_);
+      forces_[static_cast<unsigned int>(contribution->kind())] +=
+          one_global_force_;
+      global_force_ += one_global_force_;
     }
     homogeneous_.condense(global_force_);
     residual += global_force_;

@@ -70,11 +70,6 @@ namespace coshell::solvers
   {
   }
 
-  const NewtonParameters &Newton::parameters() const
-  {
-    return parameters_;
-  }
-
   Vector<double> Newton::correction(NonlinearProblem           &problem,
                                     const SparseMatrix<double> &tangent,
                                     const Vector<double>       &residual) const
@@ -206,11 +201,6 @@ namespace coshell::solvers
   double StepController::size() const
   {
     return size_;
-  }
-
-  unsigned int StepController::consecutive_cuts() const
-  {
-    return cuts_;
   }
 
   void StepController::success(unsigned int iterations)

@@ -242,11 +242,6 @@ namespace coshell::solvers
     return end_time_;
   }
 
-  double TimeIntegration::time_step() const
-  {
-    return time_step_;
-  }
-
   /// M vdot_0 = r(q_0, v_0, vdot = 0): the acceleration in equilibrium
   /// with the initial forces, which second-order accuracy needs.
   void TimeIntegration::initial_acceleration(EvolutionProblem &problem,
@@ -314,11 +309,12 @@ namespace coshell::solvers
                 ? (newton.single_correction(step_problem, observe), 1u)
                 : newton.solve(step_problem, observe);
         scheme.accept();
-        problem.save();
         t += h;
         ++step;
         control.success(iterations);
+        // Before save(): the observer measures the step increment (work).
         on_step({step, t, h, iterations});
+        problem.save();
         const auto   now = std::chrono::steady_clock::now();
         const double wall =
             std::chrono::duration<double>(now - wall_start).count();

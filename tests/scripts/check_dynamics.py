@@ -15,6 +15,10 @@ references given here (only the rows of --stage N when given).
                                 SCALE 'initial' uses |c(0)|
      [--no-growth COLUMN RTOL]  COLUMN never exceeds its first value by more
                                 than RTOL of it (stability)
+     [--energy-balance RTOL]    total_energy - external_work +
+                                dissipated_energy stays at its first value
+                                within RTOL of the largest of |external_work|
+                                and total_energy (the energy bookkeeping)
      [--final QOI VALUE ATOL]   last value of QOI within ATOL of VALUE
      [--report FILE]            append 'test,name,value' lines of what was
                                 measured (test = the output directory's name)
@@ -72,6 +76,7 @@ def main():
     parser.add_argument("--drift", nargs=3, action="append", default=[])
     parser.add_argument("--no-growth", nargs=2, action="append", default=[])
     parser.add_argument("--final", nargs=3, action="append", default=[])
+    parser.add_argument("--energy-balance", type=float)
     parser.add_argument("--report")
     args = parser.parse_args()
 
@@ -129,6 +134,15 @@ def main():
         check(growth <= float(rtol),
               f"{column} growth {growth:.3e} of its first value (limit {rtol})",
               f"growth_{column}", growth)
+    if args.energy_balance is not None:
+        energy, work, dissipated = (columns(rows, c) for c in
+                                    ("total_energy", "external_work", "dissipated_energy"))
+        balance = [e - w + d for e, w, d in zip(energy, work, dissipated)]
+        scale = max(max(abs(w) for w in work), max(energy))
+        error = max(abs(b - balance[0]) for b in balance) / scale
+        check(error <= args.energy_balance,
+              f"energy balance error {error:.3e} of {scale:.4g} (limit "
+              f"{args.energy_balance})", "energy_balance_error", error)
     for qoi, value, atol in args.final:
         last = float(rows[-1][qoi])
         check(abs(last - float(value)) <= float(atol),

@@ -34,8 +34,6 @@ namespace coshell::model
   {
     double               kinetic_energy = 0;
     dealii::Tensor<1, 3> linear_momentum, angular_momentum; ///< about 0
-    /// v . C v of the Rayleigh damping and the drag (power, force*velocity).
-    double dissipation_power = 0;
   };
 
   /// Inertia forces -M a (consistent or lumped translational mass, lumped
@@ -58,7 +56,11 @@ namespace coshell::model
                          bool                   with_tangent) const override;
     bool        symmetric_tangent() const override;
 
-    KineticMeasures measures(const ShellState &state) const;
+    /// Kinetic energy and momenta; with 'damping_force' (sized n_dofs) also
+    /// the force C v of the damping and drag, unconstrained, global axes.
+    KineticMeasures
+    measures(const ShellState       &state,
+             dealii::Vector<double> *damping_force = nullptr) const;
 
     /// Sets the velocities of 'state' from the initial-velocity expressions.
     void set_initial_velocity(ShellState &state) const;

@@ -114,7 +114,7 @@ namespace coshell::model
     double                                converged_force_scale_ = 0;
     double                                assembly_seconds_      = 0;
     PrescribedIncrements                  increments_;
-    dealii::Vector<double>                global_force_;
+    dealii::Vector<double>                global_force_, one_global_force_;
 
     EvaluationPoint point() const;
     double          current_force_scale() const;

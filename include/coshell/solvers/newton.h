@@ -70,8 +70,6 @@ namespace coshell::solvers
     double single_correction(NonlinearProblem &problem,
                              const Observer   &observer = Observer()) const;
 
-    const NewtonParameters &parameters() const;
-
   private:
     NewtonParameters parameters_;
     LinearSolver    &linear_solver_;
@@ -112,8 +110,6 @@ namespace coshell::solvers
     void failure(double             attempted,
                  const std::string &step,
                  const std::string &cause);
-    /// Steps cut since the last success.
-    unsigned int consecutive_cuts() const;
 
   private:
     Settings     settings_;

@@ -55,7 +55,6 @@ namespace coshell::solvers
 
     const std::string &method() const;
     double             end_time() const;
-    double             time_step() const;
 
     /// The rates of one scheme as functions of the step increment.
     struct Scheme;

@@ -1,0 +1,52 @@
+#pragma once
+
+#include <deal.II/base/function_parser.h>
+#include <deal.II/base/numbers.h>
+#include <deal.II/base/point.h>
+#include <deal.II/base/utilities.h>
+#include <deal.II/lac/vector.h>
+
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+namespace coshell::io
+{
+  /// A muparser function with 'n_components' expressions separated by ';'
+  /// in 'text', of the variables 'variables' (deal.II names, e.g. "x,y,z",
+  /// or "x,t" with 'time_dependent'), with pi defined. Evaluated once here,
+  /// so a bad expression fails at parse time. Throws std::invalid_argument
+  /// "<where>: ..." naming the text and what was expected ('described', e.g.
+  /// "t" or "x, y, z").
+  template<int dim>
+  std::unique_ptr<dealii::FunctionParser<dim>>
+  parse_expressions(const std::string &text,
+                    unsigned int       n_components,
+                    const std::string &variables,
+                    bool               time_dependent,
+                    const std::string &described,
+                    const std::string &where)
+  {
+    const auto expressions = dealii::Utilities::split_string_list(text, ';');
+    const std::string expected = std::to_string(n_components) +
+                                 " expression(s) of " + described +
+                                 " separated by ';'";
+    if (expressions.size() != n_components)
+      throw std::invalid_argument(where + ": '" + text + "' must be " +
+                                  expected);
+    auto function = std::make_unique<dealii::FunctionParser<dim>>(n_components);
+    try
+    {
+      function->initialize(variables, expressions,
+                           {{"pi", dealii::numbers::PI}}, time_dependent);
+      dealii::Vector<double> values(n_components);
+      function->vector_value(dealii::Point<dim>(), values);
+    }
+    catch (...)
+    {
+      throw std::invalid_argument(where + ": cannot parse '" + text + "' as " +
+                                  expected);
+    }
+    return function;
+  }
+} // namespace coshell::io
