@@ -115,6 +115,7 @@ namespace coshell::driver
     solvers::PathFollowing::declare_parameters(prm);
     model::PrescribedMotions::declare_parameters(prm);
     model::InertiaParameters::declare_parameters(prm);
+    contact::ContactParameters::declare_parameters(prm);
     prm.enter_subsection("Modal analysis");
     prm.declare_entry("Number of modes", "6", Patterns::Integer(1),
                       "Analysis/Type = modes: how many of the lowest natural "
@@ -161,6 +162,8 @@ namespace coshell::driver
     prm.leave_subsection();
     motions_.parse_parameters(prm);
     inertia_.parse_parameters(prm);
+    contact_.parse_parameters(
+        prm, std::filesystem::path(prm_file).parent_path().string());
     prm.enter_subsection("Modal analysis");
     n_modes_     = prm.get_integer("Number of modes");
     modal_shift_ = prm.get_double("Shift");
@@ -257,10 +260,11 @@ namespace coshell::driver
 
   namespace
   {
-    std::string step_file_name(unsigned int step)
+    std::string step_file_name(unsigned int       step,
+                               const std::string &stem = "solution")
     {
       std::ostringstream name;
-      name << "solution-" << std::setw(5) << std::setfill('0') << step;
+      name << stem << "-" << std::setw(5) << std::setfill('0') << step;
       return name.str();
     }
 
@@ -318,6 +322,16 @@ namespace coshell::driver
           "Analysis/Type = linear static runs no stages and no prescribed "
           "motions; set Analysis/Type = nonlinear static (or define the "
           "stages' Analysis type)");
+    if (contact_.enabled() &&
+        (analysis_type_ == "linear static" || analysis_type_ == "modes"))
+      throw std::invalid_argument(
+          "Contact is nonlinear: Contact/Method = barrier or penalty needs "
+          "Analysis/Type = nonlinear static or dynamic (or stages)");
+    if (contact_.enabled() && path_following_.arc_length())
+      throw std::invalid_argument(
+          "Contact works with load control, not with the arc-length method "
+          "(Nonlinear solver/Method): its predictor is not filtered for "
+          "collisions");
     if (analysis_type_ == "linear static" &&
         element_.formulation == model::Formulation::corotational)
       throw std::invalid_argument(
@@ -418,7 +432,8 @@ namespace coshell::driver
         supports,
         AffineConstraints<double>::MergeConflictBehavior::left_object_wins);
     motions.close();
-    if (stage.analysis != "dynamic")
+    // Inertia, or contact with obstacles, may hold what supports do not.
+    if (stage.analysis != "dynamic" && !contact_.enabled())
       model::check_supports(model, motions);
     return motions;
   }
@@ -432,8 +447,10 @@ namespace coshell::driver
     }
 
     io::CsvFile                curve, history;
-    std::optional<io::CsvFile> time_history;
-    unsigned int               step = 0, last_written = 0;
+    std::optional<io::CsvFile> time_history, contact_forces;
+    /// The contact of the run (nullptr when Contact is off).
+    contact::Contact *contact = nullptr;
+    unsigned int      step = 0, last_written = 0;
     /// Energy bookkeeping of the dynamic stages: work of the loads and
     /// reactions, energy dissipated by damping and drag (trapezoidal in
     /// time), and the working and damping forces of the last step. Both
@@ -459,6 +476,52 @@ namespace coshell::driver
                  problem.force(ForceKind::inertia)[i];
     }
   } // namespace
+
+  void Scene::write_step(const model::ShellModel &model,
+                         const model::ShellState &state,
+                         StagedOutput            &out,
+                         const std::string       &directory,
+                         unsigned int             step,
+                         double                   time)
+  {
+    const model::InternalForce           internal(model, element_.formulation,
+                                                  path_following_.tangent());
+    std::vector<io::VtuOutput::DofField> fields;
+    std::vector<std::string>             companions;
+    Vector<double>                       contact_fields;
+    if (out.contact && output_.writes_vtu())
+    {
+      contact_fields = out.contact->vertex_fields();
+      fields.push_back({{"contact_force", "contact_force", "contact_force",
+                         "contact_gap", "contact_pressure", "unused"},
+                        &contact_fields});
+      companions.push_back(step_file_name(step, "obstacles") + ".vtu");
+      std::filesystem::create_directories(directory);
+      out.contact->write_obstacles_vtu(directory + "/" + companions.back());
+    }
+    output_.write(model, state.values(), internal.resultants(state), directory,
+                  step_file_name(step), time, fields, companions);
+    out.last_written = step;
+  }
+
+  void
+  Scene::record_contact(StagedOutput &out, unsigned int step, double time) const
+  {
+    if (!out.contact)
+      return;
+    const auto &loads = out.contact->obstacle_loads();
+    for (unsigned int o = 0; o < loads.size(); ++o)
+    {
+      std::vector<double> row = {double(step), time, double(o + 1)};
+      for (unsigned int d = 0; d < 3; ++d)
+        row.push_back(loads[o].force[d]);
+      for (unsigned int d = 0; d < 3; ++d)
+        row.push_back(loads[o].moment[d]);
+      row.push_back(loads[o].active_pairs);
+      row.push_back(out.contact->smallest_gap());
+      out.contact_forces->row(row);
+    }
+  }
 
   void Scene::run_dynamic_stage(const Stage         &stage,
                                 model::ShellProblem &problem,
@@ -515,12 +578,9 @@ namespace coshell::driver
       out.time_history->row(row);
       result.steps = step;
       result.newton_iterations += record.iterations;
+      record_contact(out, step, record.time);
       if (output_.wants_step(step))
-      {
-        output_.write(model, state.values(), internal->resultants(state),
-                      directory, step_file_name(step), record.time);
-        out.last_written = step;
-      }
+        write_step(model, state, out, directory, step, record.time);
     };
     const auto on_iteration =
         [&](unsigned int step, const solvers::NewtonIteration &record)
@@ -548,9 +608,8 @@ namespace coshell::driver
                                const std::string   &directory,
                                std::ostream        &log)
   {
-    const auto &model    = problem.model();
-    const auto *internal = problem.find<model::InternalForce>();
-    const auto  on_step  = [&](unsigned int, double, unsigned int iterations)
+    const auto &model   = problem.model();
+    const auto  on_step = [&](unsigned int, double, unsigned int iterations)
     {
       const unsigned int step = ++out.step;
       result.qoi = quantities_.evaluate(model, problem.state().values());
@@ -566,13 +625,10 @@ namespace coshell::driver
           << " Newton iterations\n";
       result.load_steps = step;
       result.newton_iterations += iterations;
+      record_contact(out, step, problem.time());
       if (output_.wants_step(step))
-      {
-        output_.write(model, problem.state().values(),
-                      internal->resultants(problem.state()), directory,
-                      step_file_name(step), problem.time());
-        out.last_written = step;
-      }
+        write_step(model, problem.state(), out, directory, step,
+                   problem.time());
     };
     const auto on_iteration =
         [&](unsigned int step, const solvers::NewtonIteration &record)
@@ -617,6 +673,18 @@ namespace coshell::driver
       model::Inertia(model, inertia_).set_initial_velocity(state);
       state.save();
     }
+    std::unique_ptr<contact::Contact> contact;
+    if (contact_.enabled())
+    {
+      contact = std::make_unique<contact::Contact>(model, contact_);
+      contact->check_initial_configuration(state, 0);
+      out.contact = contact.get();
+      out.contact_forces.emplace(
+          directory + "/contact_forces.csv",
+          std::vector<std::string>{"step", "time", "obstacle", "fx", "fy", "fz",
+                                   "mx", "my", "mz", "active_pairs",
+                                   "min_distance"});
+    }
     double start_time = 0;
     for (const Stage &stage : stages_.list())
     {
@@ -629,6 +697,9 @@ namespace coshell::driver
       if (stage.analysis == "dynamic")
         contributions.push_back(
             std::make_unique<model::Inertia>(model, inertia_));
+      if (contact)
+        contributions.push_back(
+            std::make_unique<contact::ContactContribution>(*contact));
       model::ShellProblem problem(model, state, stage_constraints(model, stage),
                                   std::move(contributions),
                                   motions_.increments(model, stage.motions));
@@ -648,14 +719,11 @@ namespace coshell::driver
     const auto         phase = std::chrono::steady_clock::now();
     const unsigned int last  = out.step;
     if (out.last_written != last)
-    {
-      const model::InternalForce internal(model, element_.formulation,
-                                          path_following_.tangent());
-      output_.write(model, state.values(), internal.resultants(state),
-                    directory, step_file_name(last), start_time);
-    }
+      write_step(model, state, out, directory, last, start_time);
     out.curve.finish();
     out.history.finish();
+    if (out.contact_forces)
+      out.contact_forces->finish();
     if (out.time_history)
       out.time_history->finish();
     if (!quantities_.reference_curves().empty())

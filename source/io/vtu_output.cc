@@ -4,8 +4,10 @@
 #include <deal.II/fe/mapping_fe.h>
 #include <deal.II/numerics/data_out.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 
 namespace coshell::io
 {
@@ -72,9 +74,11 @@ namespace coshell::io
   VtuOutput::write(const model::ShellModel                     &model,
                    const Vector<double>                        &solution,
                    const std::vector<element::ShellResultants> &resultants,
-                   const std::string &output_directory,
-                   const std::string &name,
-                   double             time)
+                   const std::string              &output_directory,
+                   const std::string              &name,
+                   double                          time,
+                   const std::vector<DofField>    &fields,
+                   const std::vector<std::string> &companions)
   {
     if (!write_vtu_)
       return "";
@@ -89,6 +93,18 @@ namespace coshell::io
     data_out.add_data_vector(solution, names, DataOut<2, 3>::type_dof_data,
                              interpretation);
 
+    for (const DofField &field : fields)
+    {
+      std::vector<DataComponentInterpretation::DataComponentInterpretation>
+          kinds;
+      for (const auto &component : field.names)
+        kinds.push_back(
+            std::count(field.names.begin(), field.names.end(), component) > 1
+                ? DataComponentInterpretation::component_is_part_of_vector
+                : DataComponentInterpretation::component_is_scalar);
+      data_out.add_data_vector(*field.values, field.names,
+                               DataOut<2, 3>::type_dof_data, kinds);
+    }
     std::vector<Tensor<2, 3>> membrane, bending;
     for (const auto &r : resultants)
     {
@@ -114,10 +130,18 @@ namespace coshell::io
       data_out.write_vtu(out);
     }
     auto &series = series_[output_directory];
-    series.emplace_back(time, vtu);
+    series.push_back({time, 0, vtu});
+    for (unsigned int k = 0; k < companions.size(); ++k)
+      series.push_back({time, k + 1, companions[k]});
     const std::string pvd = output_directory + "/solution.pvd";
     std::ofstream     out(pvd);
-    DataOutBase::write_pvd_record(out, series);
+    out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" "
+           "version=\"0.1\">\n<Collection>\n";
+    for (const Entry &entry : series)
+      out << "<DataSet timestep=\"" << std::setprecision(12) << entry.time
+          << "\" group=\"\" part=\"" << entry.part << "\" file=\"" << entry.file
+          << "\"/>\n";
+    out << "</Collection>\n</VTKFile>\n";
     return pvd;
   }
 } // namespace coshell::io

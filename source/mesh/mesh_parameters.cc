@@ -60,18 +60,15 @@ namespace coshell::mesh
     prm.leave_subsection();
   }
 
-  namespace
+  std::string resolve_path(const std::string &file,
+                           const std::string &prm_directory)
   {
-    std::string resolve_path(const std::string &file,
-                             const std::string &prm_directory)
-    {
-      if (file.empty() || std::filesystem::path(file).is_absolute() ||
-          std::filesystem::exists(file))
-        return file;
-      const auto beside_prm = std::filesystem::path(prm_directory) / file;
-      return std::filesystem::exists(beside_prm) ? beside_prm.string() : file;
-    }
-  } // namespace
+    if (file.empty() || std::filesystem::path(file).is_absolute() ||
+        std::filesystem::exists(file))
+      return file;
+    const auto beside_prm = std::filesystem::path(prm_directory) / file;
+    return std::filesystem::exists(beside_prm) ? beside_prm.string() : file;
+  }
 
   void MeshParameters::parse_parameters(ParameterHandler  &prm,
                                         const std::string &prm_directory)

@@ -20,26 +20,6 @@ namespace coshell::model
       return "Motion " + std::to_string(number);
     }
 
-    Tensor<1, 3> three_numbers(const std::string &text,
-                               const std::string &where)
-    {
-      const auto   parts = Utilities::split_string_list(text, ',');
-      Tensor<1, 3> v;
-      try
-      {
-        if (parts.size() != 3)
-          throw std::invalid_argument("");
-        for (unsigned int d = 0; d < 3; ++d)
-          v[d] = Utilities::string_to_double(parts[d]);
-      }
-      catch (...)
-      {
-        throw std::invalid_argument(where + ": '" + text +
-                                    "' is not three numbers 'a, b, c'");
-      }
-      return v;
-    }
-
     void parse_where(const std::string &text,
                      PrescribedMotion  &motion,
                      const std::string &where)
@@ -118,17 +98,7 @@ namespace coshell::model
                         "Prescribed components, space separated: any of ux "
                         "uy uz, and rx ry rz all together or none (the "
                         "nodal rotation is prescribed as a whole).");
-      prm.declare_entry("Translation", "0; 0; 0", Patterns::Anything(),
-                        "d(t): three muparser expressions of the time t (s) "
-                        "separated by ';', in length units.");
-      prm.declare_entry("Rotation axis", "0, 0, 1", Patterns::Anything(),
-                        "Axis of the rigid rotation (dimensionless, "
-                        "normalized here).");
-      prm.declare_entry("Rotation angle", "0", Patterns::Anything(),
-                        "angle(t): muparser expression of t (s), in rad "
-                        "(pi is defined).");
-      prm.declare_entry("Rotation centre", "0, 0, 0", Patterns::Anything(),
-                        "A point on the rotation axis, in length units.");
+      RigidMotion::declare_entries(prm);
       prm.leave_subsection();
     }
     prm.leave_subsection();
@@ -150,20 +120,7 @@ namespace coshell::model
           parse_where(prm.get("Where"), motion, where + "/Where");
           parse_components(prm.get("Components"), motion,
                            where + "/Components");
-          motion.translation =
-              io::parse_expressions<1>(prm.get("Translation"), 3, "x,t", true,
-                                       "t", where + "/Translation");
-          motion.angle =
-              io::parse_expressions<1>(prm.get("Rotation angle"), 1, "x,t",
-                                       true, "t", where + "/Rotation angle");
-          motion.axis =
-              three_numbers(prm.get("Rotation axis"), where + "/Rotation axis");
-          if (motion.axis.norm() == 0)
-            throw std::invalid_argument(where +
-                                        "/Rotation axis: must not be zero");
-          motion.axis /= motion.axis.norm();
-          motion.centre = Point<3>(three_numbers(prm.get("Rotation centre"),
-                                                 where + "/Rotation centre"));
+          motion.motion.parse_entries(prm, where);
         }
       }
       catch (...)
@@ -229,21 +186,16 @@ namespace coshell::model
       const auto &values = state.values();
       for (const auto &[motion, vertices] : moved)
       {
-        motion.translation->set_time(time);
-        motion.angle->set_time(time);
-        Vector<double> d(3);
-        motion.translation->vector_value(Point<1>(), d);
-        const Tensor<1, 3> theta =
-            motion.angle->value(Point<1>()) * motion.axis;
+        const Tensor<1, 3> d      = motion.motion.displacement(time);
+        const Tensor<1, 3> theta  = motion.motion.rotation_vector(time);
         const bool         finite = state.finite_rotations();
         const Tensor<2, 3> R      = element::rotation_exp(theta);
         for (const unsigned int v : vertices)
         {
           const Tensor<1, 3> arm =
-              model.surface().get_vertices()[v] - motion.centre;
+              model.surface().get_vertices()[v] - motion.motion.centre;
           const Tensor<1, 3> u =
-              (finite ? R * arm - arm : cross_product_3d(theta, arm)) +
-              Tensor<1, 3>({d[0], d[1], d[2]});
+              (finite ? R * arm - arm : cross_product_3d(theta, arm)) + d;
           const VertexDofs &dofs = model.vertex_dofs(v);
           for (unsigned int c = 0; c < 3; ++c)
             if (motion.translations[c])

@@ -122,6 +122,31 @@ namespace coshell::model
         });
   }
 
+  void ShellProblem::assemble_blocks(const EvaluationPoint &at,
+                                     Vector<double>        &residual,
+                                     SparseMatrix<double>  *tangent)
+  {
+    for (const auto &contribution : contributions_)
+    {
+      Vector<double> &force =
+          forces_[static_cast<unsigned int>(contribution->kind())];
+      contribution->add_blocks(
+          at,
+          [&](const DofBlock &block)
+          {
+            for (unsigned int i = 0; i < block.dofs.size(); ++i)
+              force[block.dofs[i]] += block.vector[i];
+            if (tangent)
+              constraints_.distribute_local_to_global(
+                  block.matrix, block.vector, block.dofs, *tangent, residual);
+            else
+              constraints_.distribute_local_to_global(block.vector, block.dofs,
+                                                      residual);
+          },
+          tangent != nullptr);
+    }
+  }
+
   double ShellProblem::assembly_seconds() const
   {
     return assembly_seconds_;
@@ -138,7 +163,13 @@ namespace coshell::model
     for (auto &force : forces_)
       force = 0;
     const EvaluationPoint at = point();
+    for (const auto &contribution : contributions_)
+    {
+      contribution->prepare(at);
+      pending_ = pending_ || contribution->pending();
+    }
     assemble([](const Contribution &) { return true; }, at, &residual, tangent);
+    assemble_blocks(at, residual, tangent);
     // Each contribution's global terms, kept by kind for the force scale.
     global_force_ = 0;
     for (const auto &contribution : contributions_)
@@ -192,16 +223,30 @@ namespace coshell::model
     state_.apply_increment(correction);
   }
 
+  double
+  ShellProblem::admissible_fraction(const Vector<double> &correction) const
+  {
+    double fraction = 1;
+    for (const auto &contribution : contributions_)
+      fraction = std::min(
+          fraction, contribution->admissible_fraction(state_, correction));
+    return fraction;
+  }
+
   void ShellProblem::save()
   {
     converged_force_scale_ =
         std::max(converged_force_scale_, current_force_scale());
     state_.save();
+    for (const auto &contribution : contributions_)
+      contribution->save();
   }
 
   void ShellProblem::restore()
   {
     state_.restore();
+    for (const auto &contribution : contributions_)
+      contribution->restore();
   }
 
   bool ShellProblem::symmetric_tangent() const

@@ -156,11 +156,13 @@ namespace coshell::solvers
       const double   energy = std::abs(du * residual);
       if (iteration == 0)
         first_energy = std::max(energy, 1e-300);
-      if (parameters_.line_search)
-        du *= line_search_scale(problem, residual, du);
+      // The step filter comes first, so that the line search only tries
+      // admissible (e.g. collision-free) configurations.
       const double fraction = problem.admissible_fraction(du);
       if (fraction < 1)
         du *= fraction;
+      if (parameters_.line_search)
+        du *= line_search_scale(problem, residual, du);
       problem.apply_increment(du);
       step_increment += du;
       if (observer)

@@ -121,10 +121,12 @@ namespace coshell::solvers
 
     void converged(double new_parameter, unsigned int iterations)
     {
-      problem.save();
       parameter = new_parameter;
       ++step;
+      // Before save(), as in time integration: observers may read what
+      // the step did (the smallest contact gap over its iterates).
       on_step(step, parameter, iterations);
+      problem.save();
     }
   };
 
@@ -153,11 +155,11 @@ namespace coshell::solvers
       catch (const NewtonFailure &failure)
       {
         run.problem.restore();
-        control.failure(target - run.parameter,
-                        "load step from load factor " + short_number(run.parameter) +
-                            " to " + short_number(target),
-                        std::string(failure.what()) +
-                            " (see newton_history.csv)");
+        control.failure(
+            target - run.parameter,
+            "load step from load factor " + short_number(run.parameter) +
+                " to " + short_number(target),
+            std::string(failure.what()) + " (see newton_history.csv)");
         run.log << "  step to load factor " << target << " failed ("
                 << failure.what() << "); cutting the increment to "
                 << control.size() << '\n';

@@ -295,6 +295,11 @@ namespace coshell::solvers
       problem.set_rate_coefficients(scheme.acceleration_coefficient(),
                                     scheme.velocity_coefficient());
       scheme.predictor(q);
+      // The predictor is a step like any other: the collision filter
+      // scales it (it reads translations only, which both layouts share).
+      const double admissible = problem.admissible_fraction(q);
+      if (admissible < 1)
+        q *= admissible;
       problem.set_step_increment(q);
       step_problem.update_rates();
       const auto observe = [&](const NewtonIteration &record)

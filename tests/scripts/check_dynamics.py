@@ -32,7 +32,7 @@ import shutil
 import subprocess
 import sys
 
-from scene_runner import run_scene
+from scene_runner import add_scene_arguments, run_scene
 
 
 def columns(rows, name):
@@ -65,10 +65,7 @@ def vector(rows, prefix):
 
 def main():
     parser = argparse.ArgumentParser()
-    parser.add_argument("--coshell", required=True)
-    parser.add_argument("--prm", required=True)
-    parser.add_argument("--output", required=True)
-    parser.add_argument("--set", action="append", default=[])
+    add_scene_arguments(parser)
     parser.add_argument("--stage", type=int)
     parser.add_argument("--period", nargs=3, action="append", default=[])
     parser.add_argument("--amplitude-change", nargs=2, action="append", default=[])

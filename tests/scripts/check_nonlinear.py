@@ -27,7 +27,7 @@ import shutil
 import subprocess
 import sys
 
-from scene_runner import run_scene
+from scene_runner import add_scene_arguments, run_scene
 
 
 def read_csv(path):
@@ -85,10 +85,7 @@ def correction_orders(history):
 
 def main():
     parser = argparse.ArgumentParser()
-    parser.add_argument("--coshell", required=True)
-    parser.add_argument("--prm", required=True)
-    parser.add_argument("--output", required=True)
-    parser.add_argument("--set", action="append", default=[])
+    add_scene_arguments(parser)
     parser.add_argument("--point", nargs=3, action="append", default=[])
     parser.add_argument("--rtol", type=float, default=0.01)
     parser.add_argument("--length", type=float, default=0.0)

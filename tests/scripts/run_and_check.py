@@ -26,6 +26,8 @@ import shutil
 import subprocess
 import sys
 
+from scene_runner import add_scene_arguments
+
 
 def run_coshell(args):
     if os.path.isdir(args.output):
@@ -104,10 +106,7 @@ def check_iterations(summary, low, high):
 
 def main():
     parser = argparse.ArgumentParser()
-    parser.add_argument("--coshell", required=True)
-    parser.add_argument("--prm", required=True)
-    parser.add_argument("--output", required=True)
-    parser.add_argument("--set", action="append", default=[])
+    add_scene_arguments(parser)
     parser.add_argument("--value", nargs=3, action="append", default=[],
                         metavar=("QOI", "REFERENCE", "RTOL"))
     parser.add_argument("--error-above", nargs=3, action="append", default=[],

@@ -18,3 +18,12 @@ def run_scene(coshell, prm, output, assignments):
     if subprocess.run(command).returncode != 0:
         print("0 passed, 1 failed")
         sys.exit("FAIL: coshell exited with an error")
+
+
+def add_scene_arguments(parser):
+    """The arguments every scene checker takes: the coshell binary, the
+    scene, the output directory and --set overrides."""
+    parser.add_argument("--coshell", required=True)
+    parser.add_argument("--prm", required=True)
+    parser.add_argument("--output", required=True)
+    parser.add_argument("--set", action="append", default=[])

@@ -18,6 +18,8 @@ import shutil
 import subprocess
 import sys
 
+from scene_runner import add_scene_arguments
+
 
 def final_values(args, dt, qois):
     output = os.path.join(args.output, f"dt_{dt:g}")
@@ -38,10 +40,7 @@ def final_values(args, dt, qois):
 
 def main():
     parser = argparse.ArgumentParser()
-    parser.add_argument("--coshell", required=True)
-    parser.add_argument("--prm", required=True)
-    parser.add_argument("--output", required=True)
-    parser.add_argument("--set", action="append", default=[])
+    add_scene_arguments(parser)
     parser.add_argument("--end", type=float, required=True)
     parser.add_argument("--dt", type=float, nargs="+", required=True)
     parser.add_argument("--reference-dt", type=float, required=True)

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <coshell/contact/contact.h>
 #include <coshell/driver/stage.h>
 #include <coshell/io/json.h>
 #include <coshell/io/results.h>
@@ -65,6 +66,7 @@ namespace coshell::driver
     solvers::TimeIntegration     time_integration_;
     unsigned int                 n_modes_     = 6;
     double                       modal_shift_ = 0;
+    contact::ContactParameters   contact_;
     io::VtuOutput                output_;
     std::vector<io::LevelResult> levels_;
 
@@ -80,6 +82,16 @@ namespace coshell::driver
                                const std::string       &directory,
                                std::ostream            &log);
     struct StagedOutput;
+    /// Writes the step's VTU (with the contact fields and the obstacles).
+    void write_step(const model::ShellModel &model,
+                    const model::ShellState &state,
+                    StagedOutput            &out,
+                    const std::string       &directory,
+                    unsigned int             step,
+                    double                   time);
+    /// Appends the step's rows to contact_forces.csv.
+    void
+    record_contact(StagedOutput &out, unsigned int step, double time) const;
     void            run_static_stage(const Stage         &stage,
                                      model::ShellProblem &problem,
                                      StagedOutput        &out,

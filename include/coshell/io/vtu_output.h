@@ -16,23 +16,39 @@ namespace coshell::io
   class VtuOutput
   {
   public:
+    /// A further nodal field in the DoF layout, one name per component
+    /// (equal names form a vector).
+    struct DofField
+    {
+      std::vector<std::string>      names;
+      const dealii::Vector<double> *values = nullptr;
+    };
+
     static void declare_parameters(dealii::ParameterHandler &prm);
     void        parse_parameters(dealii::ParameterHandler &prm);
 
     /// Writes DIRECTORY/NAME.vtu and rewrites DIRECTORY/solution.pvd to
     /// list every file written to that directory so far, each at its
     /// 'time' (the load factor in nonlinear runs), so ParaView can step
-    /// through them. Returns the .pvd path, or "" when output is off.
+    /// through them. 'companions' are other VTU files of the same instant
+    /// in DIRECTORY (the obstacles), listed as further parts. Returns the
+    /// .pvd path, or "" when output is off.
     std::string write(const model::ShellModel                     &model,
                       const dealii::Vector<double>                &values,
                       const std::vector<element::ShellResultants> &resultants,
                       const std::string                           &directory,
-                      const std::string &name = "solution",
-                      double             time = 0);
+                      const std::string              &name       = "solution",
+                      double                          time       = 0,
+                      const std::vector<DofField>    &fields     = {},
+                      const std::vector<std::string> &companions = {});
 
     /// Whether nonlinear step 'step' should be written (the last step is
     /// always written by the caller).
     bool wants_step(unsigned int step) const;
+    bool writes_vtu() const
+    {
+      return write_vtu_;
+    }
 
     /// Output directory from the prm ("Output/Directory").
     std::string directory = "output";
@@ -40,6 +56,12 @@ namespace coshell::io
   private:
     bool         write_vtu_            = true;
     unsigned int steps_between_output_ = 1;
-    std::map<std::string, std::vector<std::pair<double, std::string>>> series_;
+    struct Entry
+    {
+      double       time;
+      unsigned int part;
+      std::string  file;
+    };
+    std::map<std::string, std::vector<Entry>> series_;
   };
 } // namespace coshell::io

@@ -39,6 +39,10 @@ namespace coshell::mesh
   /// file on any failure.
   void read_gmsh(Surface &surface, const std::string &file, unsigned int level);
 
+  /// A relative file name is looked up as given, then beside the prm file.
+  std::string resolve_path(const std::string &file,
+                           const std::string &prm_directory);
+
   /// Checks that every cell is a triangle with a non-degenerate area;
   /// throws std::runtime_error naming the first bad cell and its vertices.
   void check_cells(const Surface &surface);

@@ -3,7 +3,11 @@
 #include <coshell/model/cell_loop.h>
 #include <coshell/model/shell_state.h>
 
+#include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/vector.h>
+
+#include <functional>
+#include <vector>
 
 #include <string>
 
@@ -30,8 +34,20 @@ namespace coshell::model
   {
     internal = 0,
     external = 1,
-    inertia  = 2
+    inertia  = 2,
+    contact  = 3
   };
+  constexpr unsigned int n_force_kinds = 4;
+
+  /// A force and stiffness block on DoFs that do not share a cell (a
+  /// contact pair): 'vector' adds to r, 'matrix' to -dr/d(increment).
+  struct DofBlock
+  {
+    std::vector<dealii::types::global_dof_index> dofs;
+    dealii::Vector<double>                       vector;
+    dealii::FullMatrix<double>                   matrix;
+  };
+  using BlockSink = std::function<void(const DofBlock &)>;
 
   /// One physical ingredient of the residual r = f_ext - f_int - f_inertia
   /// and of its tangent K = -dr/d(increment). An ingredient the scene does
@@ -62,6 +78,36 @@ namespace coshell::model
                             dealii::Vector<double> & /*residual*/) const
     {
     }
+
+    /// Terms that couple DoFs outside a cell (contact pairs), handed to
+    /// 'sink' one block at a time after prepare().
+    virtual void add_blocks(const EvaluationPoint & /*point*/,
+                            const BlockSink & /*sink*/,
+                            bool /*with_tangent*/)
+    {
+    }
+
+    /// Called before every evaluation at 'point' (it may move obstacles
+    /// towards their position at the point's time, or find contact pairs).
+    virtual void prepare(const EvaluationPoint & /*point*/) {}
+    /// True while this contribution has not reached the state its time
+    /// asks for (an obstacle held back by the step filter): Newton must
+    /// not stop then.
+    virtual bool pending() const
+    {
+      return false;
+    }
+    /// Largest fraction in (0, 1] of 'correction' (DoF layout, from
+    /// 'state') that keeps this contribution admissible.
+    virtual double admissible_fraction(const ShellState & /*state*/,
+                                       const dealii::Vector<double> &
+                                       /*correction*/) const
+    {
+      return 1;
+    }
+    /// Keep and go back to internal state along with the configuration.
+    virtual void save() {}
+    virtual void restore() {}
 
     virtual bool symmetric_tangent() const = 0;
   };

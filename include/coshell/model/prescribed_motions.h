@@ -1,5 +1,6 @@
 #pragma once
 
+#include <coshell/model/rigid_motion.h>
 #include <coshell/model/shell_problem.h>
 
 #include <deal.II/base/function_parser.h>
@@ -26,10 +27,7 @@ namespace coshell::model
     dealii::Point<3> point;
     bool             translations[3] = {false, false, false};
     bool             rotation        = false;
-    /// d(t): 3 components; angle(t): 1 component (muparser of t).
-    std::shared_ptr<dealii::FunctionParser<1>> translation, angle;
-    dealii::Tensor<1, 3>                       axis;
-    dealii::Point<3>                           centre;
+    RigidMotion      motion;
   };
 
   /// prm subsection "Prescribed motions", with "Motion 1" ... "Motion 8".

@@ -58,9 +58,11 @@ namespace coshell::model
     void                           evaluate(dealii::Vector<double>       &residual,
                                             dealii::SparseMatrix<double> *tangent) override;
     double                         force_scale() const override;
-    bool prescribed_increment_pending() const override;
-    void distribute(dealii::Vector<double> &correction) const override;
-    void apply_increment(const dealii::Vector<double> &correction) override;
+    bool   prescribed_increment_pending() const override;
+    void   distribute(dealii::Vector<double> &correction) const override;
+    void   apply_increment(const dealii::Vector<double> &correction) override;
+    double admissible_fraction(
+        const dealii::Vector<double> &correction) const override;
     void save() override;
     void restore() override;
     bool symmetric_tangent() const override;
@@ -109,17 +111,21 @@ namespace coshell::model
     Schedule                                   schedule_;
     double                                     time_ = 0, load_factor_ = 0;
     double acceleration_coefficient_ = 0, velocity_coefficient_ = 0;
-    std::array<dealii::Vector<double>, 3> forces_;
-    bool                                  pending_               = false;
-    double                                converged_force_scale_ = 0;
-    double                                assembly_seconds_      = 0;
-    PrescribedIncrements                  increments_;
-    dealii::Vector<double>                global_force_, one_global_force_;
+    std::array<dealii::Vector<double>, n_force_kinds> forces_;
+    bool                                              pending_ = false;
+    double                 converged_force_scale_              = 0;
+    double                 assembly_seconds_                   = 0;
+    PrescribedIncrements   increments_;
+    dealii::Vector<double> global_force_, one_global_force_;
 
     EvaluationPoint point() const;
     double          current_force_scale() const;
     void            update_inhomogeneities();
     /// Runs the cell terms of the contributions 'use' selects.
+    /// Adds the blocks of the contributions (contact pairs).
+    void assemble_blocks(const EvaluationPoint        &at,
+                         dealii::Vector<double>       &residual,
+                         dealii::SparseMatrix<double> *tangent);
     void assemble(const std::function<bool(const Contribution &)> &use,
                   const EvaluationPoint                           &at,
                   dealii::Vector<double>                          *residual,

@@ -1,0 +1,225 @@
+#pragma once
+
+#include <coshell/contact/barrier.h>
+#include <coshell/contact/distances.h>
+#include <coshell/contact/obstacle.h>
+#include <coshell/model/contribution.h>
+#include <coshell/model/shell_model.h>
+#include <coshell/model/shell_state.h>
+
+#include <deal.II/base/bounding_box.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/numerics/rtree.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace coshell::contact
+{
+  enum class Method
+  {
+    none,    ///< no contact: nothing is built
+    barrier, ///< IPC log barrier with a collision-free step filter
+    penalty  ///< smoothed penalty on the penetration
+  };
+
+  /// prm subsection "Contact".
+  struct ContactParameters
+  {
+    Method method = Method::none;
+    /// Barrier: gap below which the barrier acts (length); 0 = automatic.
+    double activation_distance = 0;
+    /// Barrier (N/mm^3 in mm, N; energy per area per length^2); 0 = auto.
+    double barrier_stiffness = 0;
+    /// Penalty: pressure per penetration (N/mm^3); 0 = automatic.
+    double penalty_stiffness = 0;
+    /// Penalty: penetration over which the penalty's stiffness ramps up.
+    double penalty_smoothing = 0;
+    /// A step whose smallest gap falls below this fraction of the
+    /// activation distance doubles the barrier stiffness (dimensionless).
+    double stiffening_gap_ratio = 1e-3;
+    bool   project_tangent      = true;
+    /// Friction: tangential speed below which friction is smoothed (the
+    /// creep speed of sticking), length / s.
+    double                stiction_velocity = 1e-3;
+    std::vector<Obstacle> obstacles;
+
+    static void declare_parameters(dealii::ParameterHandler &prm);
+    void        parse_parameters(dealii::ParameterHandler &prm,
+                                 const std::string        &prm_directory);
+    bool        enabled() const
+    {
+      return method != Method::none;
+    }
+  };
+
+  /// The force and moment (about the origin) that the shell exerts on an
+  /// obstacle, and its number of active contact pairs.
+  struct ObstacleLoad
+  {
+    dealii::Tensor<1, 3> force, moment;
+    unsigned int         active_pairs = 0;
+  };
+
+  /// Contact of the shell's mid-surface with rigid obstacles, kept at
+  /// least half the shell thickness plus the obstacle's offset apart.
+  /// Pairs are shell vertices against obstacle triangles and obstacle
+  /// vertices against shell triangles. Obstacles move to their position
+  /// at the evaluation time as far as the step filter lets them, so that
+  /// no iterate interpenetrates (barrier). Lives across the stages.
+  class Contact
+  {
+  public:
+    Contact(const model::ShellModel &model,
+            const ContactParameters &parameters);
+
+    /// Throws, naming the obstacle and the shell vertex or triangle, if the
+    /// shell at 'time' is closer to an obstacle than its offset.
+    void check_initial_configuration(const model::ShellState &state,
+                                     double                   time);
+
+    void   prepare(const model::ShellState &state, double time);
+    bool   obstacles_pending() const;
+    void   add_pair_terms(const model::ShellState &state,
+                          const model::BlockSink  &sink,
+                          bool                     with_tangent);
+    double admissible_fraction(const model::ShellState      &state,
+                               const dealii::Vector<double> &correction) const;
+    void   save();
+    void   restore();
+
+    /// Per obstacle, at the last evaluation.
+    const std::vector<ObstacleLoad> &obstacle_loads() const;
+    const std::vector<Obstacle>     &obstacles() const;
+    /// Smallest gap (distance minus offsets) over every evaluation since
+    /// the last save() (+inf if no pair was within reach), length.
+    double smallest_gap() const;
+    /// Largest penetration (penalty) since the last save(), length.
+    double largest_penetration() const;
+    /// Vertex fields in the DoF layout: contact force (ux..uz slots), the
+    /// smallest gap of the vertex's pairs (rx slot, +inf -> activation
+    /// distance) and the contact pressure |f| / area (ry slot).
+    dealii::Vector<double> vertex_fields() const;
+    /// Writes the obstacles at their current positions as one VTU file.
+    void   write_obstacles_vtu(const std::string &file) const;
+    double barrier_stiffness() const;
+    double activation_distance() const;
+
+  private:
+    /// A shell vertex against an obstacle triangle (shell_vertex_side), or
+    /// an obstacle vertex against a shell triangle.
+    struct Pair
+    {
+      bool         shell_vertex_side = true;
+      unsigned int obstacle          = 0;
+      unsigned int shell             = 0; ///< shell vertex or triangle index
+      unsigned int other             = 0; ///< obstacle triangle or vertex
+      double       area = 0; ///< the pair's share of the shell, length^2
+    };
+    /// What friction keeps of a pair from the last converged state.
+    struct NormalForce
+    {
+      Pair                  pair;
+      double                force; ///< normal force, N
+      std::array<double, 2> closest;
+      dealii::Tensor<1, 3>  normal; ///< from the closest point to the point
+    };
+    std::vector<NormalForce> normal_forces_;
+    std::vector<NormalForce> lagged_normal_forces_;
+    using Tree = dealii::RTree<std::pair<dealii::BoundingBox<3>, unsigned>>;
+
+    const model::ShellModel                   &model_;
+    ContactParameters                          parameters_;
+    double                                     thickness_ = 0;
+    double                                     kappa_ = 0, activation_ = 0;
+    std::vector<unsigned int>                  shell_vertices_; ///< used
+    std::vector<double>                        shell_vertex_area_;
+    std::vector<std::array<unsigned, 3>>       shell_triangles_;
+    std::vector<double>                        shell_triangle_area_;
+    double                                     target_time_ = -1e300;
+    std::vector<std::vector<dealii::Point<3>>> current_, saved_, target_;
+    std::vector<Tree>                          obstacle_trees_;
+    std::vector<Pair>                          pairs_;
+    std::vector<dealii::Point<3>> positions_;       ///< shell, at prepare()
+    std::vector<dealii::Point<3>> saved_positions_; ///< at save()
+    double                        saved_time_ = 0;
+    std::vector<ObstacleLoad>     loads_;
+    std::vector<double>           vertex_gap_;
+    dealii::Vector<double>        vertex_force_;
+    double                        smallest_gap_ = 0, largest_penetration_ = 0;
+    bool                          pending_ = false;
+
+    double offset(unsigned int obstacle) const;
+    double reach(unsigned int obstacle) const;
+    std::vector<dealii::Point<3>>
+           shell_positions(const model::ShellState &state) const;
+    void   rebuild_tree(unsigned int obstacle);
+    double max_reach() const;
+    /// Boxes of the shell triangles (swept by dx if given), inflated.
+    Tree shell_triangle_tree(const std::vector<dealii::Point<3>>     &x,
+                             const std::vector<dealii::Tensor<1, 3>> *dx,
+                             double inflation) const;
+    /// The four points of a pair (its point first) from the shell's and
+    /// the obstacle's vertex positions.
+    std::array<dealii::Point<3>, 4>
+    pair_points(const Pair                          &pair,
+                const std::vector<dealii::Point<3>> &shell,
+                const std::vector<dealii::Point<3>> &obstacle) const;
+    /// Friction of the pairs in contact at the last converged state.
+    void   add_friction_terms(const model::BlockSink &sink, bool with_tangent);
+    void   add_friction(const NormalForce &lagged,
+                        bool               with_tangent,
+                        model::DofBlock   &block);
+    void   pair_dofs(const Pair &pair, model::DofBlock &block) const;
+    void   pair_hessian(const SquaredDistance      &s,
+                        const Coordinates12        &dg,
+                        double                      distance,
+                        double                      weight,
+                        const ScalarDerivatives    &phi,
+                        unsigned int                first,
+                        unsigned int                last,
+                        dealii::FullMatrix<double> &matrix) const;
+    void   record_pair(const Pair                            &pair,
+                       const std::array<dealii::Point<3>, 4> &points,
+                       const Coordinates12                   &gradient,
+                       double                                 gap,
+                       const model::DofBlock                 &block);
+    void   find_pairs(const std::vector<dealii::Point<3>> &x);
+    double ccd_fraction(const std::vector<dealii::Point<3>>     &x,
+                        const std::vector<dealii::Tensor<1, 3>> *dx,
+                        unsigned int                             obstacle,
+                        const std::vector<dealii::Tensor<1, 3>> *dX) const;
+    void   advance_obstacles(const std::vector<dealii::Point<3>> &x);
+    void   set_target_time(double time);
+  };
+
+  /// The closest point of a point-triangle pair on its triangle.
+  dealii::Tensor<1, 3>
+  closest_point(const std::array<dealii::Point<3>, 4> &points,
+                const SquaredDistance                 &s);
+
+  /// The Contribution that adds a Contact to a ShellProblem.
+  class ContactContribution : public model::Contribution
+  {
+  public:
+    explicit ContactContribution(Contact &contact);
+    std::string      name() const override;
+    model::ForceKind kind() const override;
+    bool             has_cell_terms() const override;
+    void             add_blocks(const model::EvaluationPoint &point,
+                                const model::BlockSink       &sink,
+                                bool                          with_tangent) override;
+    void             prepare(const model::EvaluationPoint &point) override;
+    bool             pending() const override;
+    double           admissible_fraction(
+                  const model::ShellState      &state,
+                  const dealii::Vector<double> &correction) const override;
+    void save() override;
+    void restore() override;
+    bool symmetric_tangent() const override;
+
+  private:
+    Contact &contact_;
+  };
+} // namespace coshell::contact

@@ -1,0 +1,53 @@
+#pragma once
+
+#include <coshell/model/rigid_motion.h>
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/point.h>
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace coshell::contact
+{
+  /// A rigid obstacle: a triangle surface mesh in its reference position,
+  /// moved by a rigid motion of time, with a friction coefficient and an
+  /// offset added to the shell's half thickness.
+  struct Obstacle
+  {
+    std::string                          name;
+    std::vector<dealii::Point<3>>        vertices; ///< reference positions
+    std::vector<std::array<unsigned, 3>> triangles;
+    model::RigidMotion                   motion;
+    double                               friction_coefficient = 0;
+    double                               offset               = 0; ///< length
+    /// Area of the triangles around each vertex, a third of each (length^2).
+    std::vector<double> vertex_area;
+
+    /// Vertex positions at time t.
+    std::vector<dealii::Point<3>> positions(double time) const;
+  };
+
+  /// prm subsections "Contact/Obstacle 1" ... "Obstacle 8".
+  struct ObstacleParameters
+  {
+    static constexpr unsigned int max_obstacles = 8;
+
+    static void declare_parameters(dealii::ParameterHandler &prm);
+    /// Reads the meshes too. Throws std::runtime_error naming the obstacle
+    /// (its subsection and name) and the file or entry at fault: a missing,
+    /// unreadable or empty mesh, a degenerate triangle, a negative friction
+    /// coefficient or offset, an unparsable motion.
+    static std::vector<Obstacle>
+    parse_parameters(dealii::ParameterHandler &prm,
+                     const std::string        &prm_directory);
+  };
+
+  /// Reads a triangle surface: a gmsh .msh or .geo (every physical
+  /// surface) or an STL file (ASCII or binary; coincident vertices are
+  /// merged). Throws std::runtime_error naming the file.
+  void read_triangle_surface(const std::string                    &file,
+                             std::vector<dealii::Point<3>>        &vertices,
+                             std::vector<std::array<unsigned, 3>> &triangles);
+} // namespace coshell::contact

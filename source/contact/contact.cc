@@ -1,0 +1,354 @@
+#include <coshell/contact/barrier.h>
+#include <coshell/contact/ccd.h>
+#include <coshell/contact/contact.h>
+#include <coshell/contact/distances.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+namespace coshell::contact
+{
+  using namespace dealii;
+  namespace bgi = boost::geometry::index;
+
+  namespace
+  {
+    constexpr double infinity = std::numeric_limits<double>::infinity();
+
+    BoundingBox<3> box_around(const std::vector<Point<3>> &points,
+                              double                       inflation)
+    {
+      BoundingBox<3> box(points);
+      box.extend(inflation);
+      return box;
+    }
+
+  } // namespace
+
+  Contact::Contact(const model::ShellModel &model,
+                   const ContactParameters &parameters)
+      : model_(model), parameters_(parameters),
+        thickness_(model.element_parameters().material.thickness)
+  {
+    const auto &material = model.element_parameters().material;
+    activation_          = parameters_.activation_distance > 0
+                               ? parameters_.activation_distance
+                               : 0.1 * thickness_;
+    kappa_               = parameters_.barrier_stiffness > 0
+                               ? parameters_.barrier_stiffness
+                               : material.youngs_modulus /
+                       (thickness_ *
+                        log_barrier(0.5 * activation_, activation_).second);
+    if (parameters_.penalty_stiffness <= 0)
+      parameters_.penalty_stiffness = material.youngs_modulus / thickness_;
+    if (parameters_.penalty_smoothing <= 0)
+      parameters_.penalty_smoothing = 0.01 * thickness_;
+
+    const auto &vertices = model.surface().get_vertices();
+    shell_vertex_area_.assign(vertices.size(), 0);
+    for (const auto &cell : model.dof_handler().active_cell_iterators())
+    {
+      const std::array<unsigned, 3> t{
+          cell->vertex_index(0), cell->vertex_index(1), cell->vertex_index(2)};
+      const double area =
+          0.5 * cross_product_3d(vertices[t[1]] - vertices[t[0]],
+                                 vertices[t[2]] - vertices[t[0]])
+                    .norm();
+      shell_triangles_.push_back(t);
+      shell_triangle_area_.push_back(area);
+      for (const unsigned v : t)
+        shell_vertex_area_[v] += area / 3;
+    }
+    for (unsigned int v = 0; v < vertices.size(); ++v)
+      if (model.vertex_is_used(v))
+        shell_vertices_.push_back(v);
+    const unsigned int n = parameters_.obstacles.size();
+    current_.resize(n);
+    target_.resize(n);
+    obstacle_trees_.resize(n);
+    loads_.resize(n);
+    vertex_gap_.assign(vertices.size(), infinity);
+    vertex_force_.reinit(model.n_dofs());
+    smallest_gap_ = infinity;
+  }
+
+  double Contact::offset(unsigned int obstacle) const
+  {
+    return 0.5 * thickness_ + parameters_.obstacles[obstacle].offset;
+  }
+
+  double Contact::reach(unsigned int obstacle) const
+  {
+    return offset(obstacle) +
+           (parameters_.method == Method::barrier ? activation_ : 0.0);
+  }
+
+  std::vector<Point<3>>
+  Contact::shell_positions(const model::ShellState &state) const
+  {
+    const auto           &reference = model_.surface().get_vertices();
+    const auto           &values    = state.values();
+    std::vector<Point<3>> x(reference);
+    for (const unsigned v : shell_vertices_)
+    {
+      const auto &dofs = model_.vertex_dofs(v);
+      for (unsigned int c = 0; c < 3; ++c)
+        x[v][c] += values[dofs[c]];
+    }
+    return x;
+  }
+
+  void Contact::rebuild_tree(unsigned int obstacle)
+  {
+    const auto                                      &x = current_[obstacle];
+    std::vector<std::pair<BoundingBox<3>, unsigned>> boxes;
+    const auto &triangles = parameters_.obstacles[obstacle].triangles;
+    boxes.reserve(triangles.size());
+    for (unsigned int k = 0; k < triangles.size(); ++k)
+      boxes.emplace_back(box_around({x[triangles[k][0]], x[triangles[k][1]],
+                                     x[triangles[k][2]]},
+                                    reach(obstacle)),
+                         k);
+    obstacle_trees_[obstacle] = pack_rtree(boxes);
+  }
+
+  const std::vector<ObstacleLoad> &Contact::obstacle_loads() const
+  {
+    return loads_;
+  }
+
+  const std::vector<Obstacle> &Contact::obstacles() const
+  {
+    return parameters_.obstacles;
+  }
+
+  double Contact::smallest_gap() const
+  {
+    return smallest_gap_;
+  }
+
+  double Contact::largest_penetration() const
+  {
+    return largest_penetration_;
+  }
+
+  double Contact::barrier_stiffness() const
+  {
+    return kappa_;
+  }
+
+  double Contact::activation_distance() const
+  {
+    return activation_;
+  }
+
+  bool Contact::obstacles_pending() const
+  {
+    return pending_;
+  }
+} // namespace coshell::contact
+
+namespace coshell::contact
+{
+  using namespace dealii;
+  namespace bgi = boost::geometry::index;
+
+  /// Largest fraction of the motion (shell by dx, obstacle by dX; either
+  /// may be absent) that keeps every pair of this obstacle farther apart
+  /// than its offset: additive CCD on the candidates whose swept boxes
+  /// meet.
+  double Contact::ccd_fraction(const std::vector<Point<3>>     &x,
+                               const std::vector<Tensor<1, 3>> *dx,
+                               unsigned int                     o,
+                               const std::vector<Tensor<1, 3>> *dX) const
+  {
+    const auto  &X         = current_[o];
+    const auto  &triangles = parameters_.obstacles[o].triangles;
+    const double r         = offset(o);
+    const auto   along     = [](const std::vector<Tensor<1, 3>> *d, unsigned i)
+    { return d ? (*d)[i] : Tensor<1, 3>(); };
+    Tree swept_obstacle;
+    if (dX)
+    {
+      std::vector<std::pair<BoundingBox<3>, unsigned>> boxes;
+      for (unsigned int k = 0; k < triangles.size(); ++k)
+      {
+        std::vector<Point<3>> corners;
+        for (const unsigned i : triangles[k])
+          corners.insert(corners.end(), {X[i], X[i] + (*dX)[i]});
+        boxes.emplace_back(box_around(corners, r), k);
+      }
+      swept_obstacle = pack_rtree(boxes);
+    }
+    const Tree &obstacle_tree = dX ? swept_obstacle : obstacle_trees_[o];
+    double      fraction      = 1;
+    std::vector<std::pair<BoundingBox<3>, unsigned>> hits;
+    for (const unsigned v : shell_vertices_)
+    {
+      hits.clear();
+      obstacle_tree.query(
+          bgi::intersects(box_around({x[v], x[v] + along(dx, v)}, 0)),
+          std::back_inserter(hits));
+      for (const auto &hit : hits)
+      {
+        const auto &t = triangles[hit.second];
+        fraction =
+            std::min(fraction, additive_ccd(PrimitivePair::point_triangle,
+                                            {x[v], X[t[0]], X[t[1]], X[t[2]]},
+                                            {along(dx, v), along(dX, t[0]),
+                                             along(dX, t[1]), along(dX, t[2])},
+                                            r));
+      }
+    }
+    const Tree shell_tree = shell_triangle_tree(x, dx, r);
+    for (unsigned int j = 0; j < X.size(); ++j)
+    {
+      hits.clear();
+      shell_tree.query(
+          bgi::intersects(box_around({X[j], X[j] + along(dX, j)}, 0)),
+          std::back_inserter(hits));
+      for (const auto &hit : hits)
+      {
+        const auto &t = shell_triangles_[hit.second];
+        fraction =
+            std::min(fraction, additive_ccd(PrimitivePair::point_triangle,
+                                            {X[j], x[t[0]], x[t[1]], x[t[2]]},
+                                            {along(dX, j), along(dx, t[0]),
+                                             along(dx, t[1]), along(dx, t[2])},
+                                            r));
+      }
+    }
+    return fraction;
+  }
+
+  double Contact::admissible_fraction(const model::ShellState &state,
+                                      const Vector<double>    &correction) const
+  {
+    if (parameters_.method != Method::barrier)
+      return 1;
+    const std::vector<Point<3>> x = shell_positions(state);
+    std::vector<Tensor<1, 3>>   dx(x.size());
+    for (const unsigned v : shell_vertices_)
+      for (unsigned int c = 0; c < 3; ++c)
+        dx[v][c] = correction[model_.vertex_dofs(v)[c]];
+    double fraction = 1;
+    for (unsigned int o = 0; o < current_.size(); ++o)
+      fraction = std::min(fraction, ccd_fraction(x, &dx, o, nullptr));
+    return fraction;
+  }
+
+  /// Moves each obstacle towards its position at the evaluation time, as
+  /// far as the step filter allows against the shell as it is.
+  void Contact::advance_obstacles(const std::vector<Point<3>> &x)
+  {
+    pending_ = false;
+    for (unsigned int o = 0; o < current_.size(); ++o)
+    {
+      if (current_[o] == target_[o])
+        continue;
+      std::vector<Tensor<1, 3>> dX(current_[o].size());
+      for (unsigned int i = 0; i < dX.size(); ++i)
+        dX[i] = target_[o][i] - current_[o][i];
+      const double fraction = parameters_.method == Method::barrier
+                                  ? ccd_fraction(x, nullptr, o, &dX)
+                                  : 1.0;
+      if (fraction >= 1)
+        current_[o] = target_[o];
+      else
+      {
+        for (unsigned int i = 0; i < dX.size(); ++i)
+          current_[o][i] += fraction * dX[i];
+        pending_ = true;
+      }
+      rebuild_tree(o);
+    }
+  }
+
+  void Contact::set_target_time(double time)
+  {
+    if (time == target_time_)
+      return;
+    target_time_ = time;
+    for (unsigned int o = 0; o < current_.size(); ++o)
+    {
+      target_[o] = parameters_.obstacles[o].positions(time);
+      if (current_[o].empty()) // first use: no sweep from nowhere
+      {
+        current_[o] = target_[o];
+        rebuild_tree(o);
+      }
+    }
+  }
+
+  void Contact::prepare(const model::ShellState &state, double time)
+  {
+    set_target_time(time);
+    positions_ = shell_positions(state);
+    advance_obstacles(positions_);
+    find_pairs(positions_);
+  }
+
+  void Contact::save()
+  {
+    saved_                = current_;
+    saved_positions_      = positions_;
+    saved_time_           = target_time_;
+    lagged_normal_forces_ = normal_forces_;
+    if (parameters_.method == Method::barrier &&
+        smallest_gap_ < parameters_.stiffening_gap_ratio * activation_)
+      kappa_ *= 2; // the barrier is getting too stiff a spring: stiffen it
+    smallest_gap_        = std::numeric_limits<double>::infinity();
+    largest_penetration_ = 0;
+  }
+
+  void Contact::restore()
+  {
+    if (saved_.empty())
+      return;
+    current_ = saved_;
+    for (unsigned int o = 0; o < current_.size(); ++o)
+      rebuild_tree(o);
+  }
+
+  void Contact::check_initial_configuration(const model::ShellState &state,
+                                            double                   time)
+  {
+    set_target_time(time);
+    for (unsigned int o = 0; o < current_.size(); ++o)
+    {
+      current_[o] = target_[o];
+      rebuild_tree(o);
+    }
+    saved_           = current_;
+    positions_       = shell_positions(state);
+    saved_positions_ = positions_;
+    saved_time_      = time;
+    find_pairs(positions_);
+    for (const Pair &pair : pairs_)
+    {
+      const auto   p = pair_points(pair, positions_, current_[pair.obstacle]);
+      const double distance = std::sqrt(
+          point_triangle_distance(p[0], p[1], p[2], p[3], false).value);
+      if (distance > offset(pair.obstacle))
+        continue;
+      const Obstacle    &obstacle = parameters_.obstacles[pair.obstacle];
+      std::ostringstream message;
+      message << "the shell starts inside obstacle '" << obstacle.name
+              << "' (Contact/Obstacle " << pair.obstacle + 1 << "): "
+              << (pair.shell_vertex_side
+                      ? "shell vertex " + std::to_string(pair.shell)
+                      : "shell triangle " + std::to_string(pair.shell))
+              << " at " << p[pair.shell_vertex_side ? 0 : 1]
+              << " is at distance " << distance
+              << " from it, not more than the offset " << offset(pair.obstacle)
+              << " (half the shell thickness plus the obstacle's Offset)";
+      throw std::runtime_error(message.str());
+    }
+    smallest_gap_        = std::numeric_limits<double>::infinity();
+    largest_penetration_ = 0;
+  }
+} // namespace coshell::contact

@@ -1,0 +1,125 @@
+// Smoothed Coulomb friction of the contact pairs (IPC, Li et al. 2020,
+// section 5): the tangential relative displacement u of the pair's closest
+// points over the step, against the obstacle's, meets the force
+// F = -mu lambda f1(|u|) u / |u|, with f1(x) = 2x/eps - x^2/eps^2 below
+// eps = (stiction velocity) * (step duration) and 1 above. The normal
+// force lambda, the normal n and the closest point's weights are taken
+// from the same evaluation but held fixed in the tangent (lagged).
+
+#include <coshell/contact/contact.h>
+
+#include <cmath>
+
+namespace coshell::contact
+{
+  using namespace dealii;
+
+  namespace
+  {
+    /// f1(x)/x and its derivative in x.
+    std::pair<double, double> friction_ratio(double x, double eps)
+    {
+      if (x < eps)
+        return {2 / eps - x / (eps * eps), -1 / (eps * eps)};
+      return {1 / x, -1 / (x * x)};
+    }
+  } // namespace
+
+  Tensor<1, 3> closest_point(const std::array<Point<3>, 4> &points,
+                             const SquaredDistance         &s)
+  {
+    const double b = s.parameters[0], c = s.parameters[1];
+    return (1 - b - c) * points[1] + b * points[2] + c * points[3];
+  }
+
+  /// Friction acts on the pairs that were in contact at the last
+  /// converged state, with their normal force, normal and closest point
+  /// of then (IPC's lagging): within a step it is the gradient of a fixed
+  /// potential, so Newton converges as on an elastic problem, and a pair
+  /// that leaves the barrier's reach during the iterations does not switch
+  /// its friction off and on.
+  void Contact::add_friction_terms(const model::BlockSink &sink,
+                                   bool                    with_tangent)
+  {
+    model::DofBlock block;
+    for (const NormalForce &lagged : lagged_normal_forces_)
+    {
+      if (parameters_.obstacles[lagged.pair.obstacle].friction_coefficient == 0)
+        continue;
+      pair_dofs(lagged.pair, block);
+      block.vector = 0;
+      if (with_tangent)
+        block.matrix = 0;
+      add_friction(lagged, with_tangent, block);
+      for (unsigned int i = 0; i < block.dofs.size(); ++i)
+        vertex_force_[block.dofs[i]] += block.vector[i];
+      sink(block);
+    }
+  }
+
+  void Contact::add_friction(const NormalForce &lagged,
+                             bool               with_tangent,
+                             model::DofBlock   &block)
+  {
+    const Pair  &pair = lagged.pair;
+    const double mu = parameters_.obstacles[pair.obstacle].friction_coefficient;
+    const double eps = parameters_.stiction_velocity *
+                       std::max(target_time_ - saved_time_, 0.0);
+    if (!(eps > 0) || lagged.force == 0)
+      return;
+    const double                  normal_force = lagged.force;
+    const std::array<double, 2>  &closest      = lagged.closest;
+    const Tensor<1, 3>            normal = lagged.normal / lagged.normal.norm();
+    const std::array<Point<3>, 4> points =
+        pair_points(pair, positions_, current_[pair.obstacle]);
+    // Weights of the four points in the relative displacement of the
+    // point (index 0) against the closest point of the triangle.
+    const std::array<double, 4>   w = {1, -(1 - closest[0] - closest[1]),
+                                       -closest[0], -closest[1]};
+    const std::array<Point<3>, 4> before =
+        pair_points(pair, saved_positions_, saved_[pair.obstacle]);
+    Tensor<1, 3> relative;
+    for (unsigned int k = 0; k < 4; ++k)
+      relative += w[k] * (points[k] - before[k]);
+    const Tensor<1, 3> u      = relative - (relative * normal) * normal;
+    const double       x      = u.norm();
+    const auto [ratio, slope] = friction_ratio(x, eps);
+    const Tensor<1, 3> force  = -mu * normal_force * ratio * u; // on point 0
+
+    // Shell points: the point (type A) or the triangle (type B).
+    const unsigned int first = pair.shell_vertex_side ? 0 : 1;
+    const unsigned int n     = pair.shell_vertex_side ? 1 : 3;
+    for (unsigned int i = 0; i < n; ++i)
+      for (unsigned int c = 0; c < 3; ++c)
+        block.vector[3 * i + c] += w[first + i] * force[c];
+    ObstacleLoad      &load = loads_[pair.obstacle];
+    const Tensor<1, 3> on_obstacle =
+        pair.shell_vertex_side ? -force : Tensor<1, 3>(force);
+    load.force += on_obstacle;
+    // Applied at the obstacle's side of the pair: its closest point, or
+    // its vertex.
+    Tensor<1, 3> at = points[0];
+    if (pair.shell_vertex_side)
+    {
+      at = Tensor<1, 3>();
+      for (unsigned int k = 1; k < 4; ++k)
+        at -= w[k] * points[k];
+    }
+    load.moment += cross_product_3d(at, on_obstacle);
+    if (!with_tangent)
+      return;
+    // K = mu lambda w_i w_k M, M = (f1/x) P + (f1/x)' u u^T / x: positive
+    // semi-definite for every x.
+    Tensor<2, 3> m;
+    for (unsigned int a = 0; a < 3; ++a)
+      for (unsigned int b = 0; b < 3; ++b)
+        m[a][b] = ratio * ((a == b) - normal[a] * normal[b]) +
+                  (x > 0 ? slope * u[a] * u[b] / x : 0.0);
+    for (unsigned int i = 0; i < n; ++i)
+      for (unsigned int k = 0; k < n; ++k)
+        for (unsigned int a = 0; a < 3; ++a)
+          for (unsigned int b = 0; b < 3; ++b)
+            block.matrix(3 * i + a, 3 * k + b) +=
+                mu * normal_force * w[first + i] * w[first + k] * m[a][b];
+  }
+} // namespace coshell::contact

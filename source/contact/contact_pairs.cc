@@ -1,0 +1,355 @@
+// Finding the contact pairs of the shell and the obstacles, and their
+// forces and stiffness.
+
+#include <coshell/contact/barrier.h>
+#include <coshell/contact/contact.h>
+#include <coshell/contact/distances.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <set>
+
+namespace coshell::contact
+{
+  using namespace dealii;
+  namespace bgi = boost::geometry::index;
+
+  namespace
+  {
+    /// The (sorted) mesh vertices of a point-triangle feature code.
+    std::array<long, 3> feature_vertices(const std::array<unsigned, 3> &t,
+                                         unsigned int                   feature)
+    {
+      static const std::array<std::array<int, 3>, 7> corners = {{{0, -1, -1},
+                                                                 {1, -1, -1},
+                                                                 {2, -1, -1},
+                                                                 {0, 1, -1},
+                                                                 {0, 2, -1},
+                                                                 {1, 2, -1},
+                                                                 {0, 1, 2}}};
+      std::array<long, 3>                            ids{-1, -1, -1};
+      for (unsigned int i = 0; i < 3; ++i)
+        if (corners[feature][i] >= 0)
+          ids[i] = t[corners[feature][i]];
+      std::sort(ids.begin(), ids.end());
+      return ids;
+    }
+
+    using Hits = std::vector<std::pair<BoundingBox<3>, unsigned>>;
+  } // namespace
+
+  namespace
+  {
+    /// A pair found by the broad phase, with the closest features of its
+    /// two sides (sorted mesh vertex ids, -1 padded) and its distance.
+    struct Candidate
+    {
+      std::array<long, 3> shell, obstacle;
+      double              distance;
+      bool                shell_side_varies; ///< which side's feature varies
+    };
+
+    /// Whether feature a is a proper part (vertex, edge) of feature b.
+    bool proper_part(const std::array<long, 3> &a, const std::array<long, 3> &b)
+    {
+      unsigned int shared = 0, size_a = 0, size_b = 0;
+      for (const long id : a)
+        if (id >= 0)
+        {
+          ++size_a;
+          shared += std::count(b.begin(), b.end(), id);
+        }
+      for (const long id : b)
+        size_b += id >= 0;
+      return shared == size_a && size_a < size_b;
+    }
+
+    /// Keeps a candidate only where its distance is a local minimum over
+    /// the surface: not if a feature it bounds is strictly closer (a
+    /// vertex over the middle of a flat face is also within reach of the
+    /// face's edges and of the neighbouring triangles' shared edge; only
+    /// the face counts, so a frictionless plane pushes only along its
+    /// normal).
+    std::vector<bool> local_minima(const std::vector<Candidate> &candidates)
+    {
+      std::vector<bool> keep(candidates.size(), true);
+      for (unsigned int i = 0; i < candidates.size(); ++i)
+        for (unsigned int j = 0; j < candidates.size() && keep[i]; ++j)
+        {
+          const auto &a = candidates[i], &b = candidates[j];
+          const auto &fa = a.shell_side_varies ? a.shell : a.obstacle;
+          const auto &fb = b.shell_side_varies ? b.shell : b.obstacle;
+          if (proper_part(fa, fb) && b.distance < a.distance)
+            keep[i] = false;
+        }
+      return keep;
+    }
+  } // namespace
+
+  /// Pairs within reach, one per pair of closest features, each a local
+  /// minimum of the distance (see local_minima()).
+  void Contact::find_pairs(const std::vector<Point<3>> &x)
+  {
+    pairs_.clear();
+    std::set<std::array<long, 7>> seen;
+    std::vector<Candidate>        candidates;
+    std::vector<Pair>             found;
+    const auto                    settle = [&]()
+    {
+      const std::vector<bool> keep = local_minima(candidates);
+      for (unsigned int k = 0; k < candidates.size(); ++k)
+      {
+        const auto               &c   = candidates[k];
+        const std::array<long, 7> key = {
+            found[k].obstacle, c.shell[0],    c.shell[1],   c.shell[2],
+            c.obstacle[0],     c.obstacle[1], c.obstacle[2]};
+        if (!keep[k] || !seen.insert(key).second)
+          continue;
+        pairs_.push_back(found[k]);
+        const double gap     = c.distance - offset(found[k].obstacle);
+        smallest_gap_        = std::min(smallest_gap_, gap);
+        largest_penetration_ = std::max(largest_penetration_, -gap);
+      }
+      candidates.clear();
+      found.clear();
+    };
+    const Tree     shell_tree = shell_triangle_tree(x, nullptr, max_reach());
+    BoundingBox<3> shell_box(x);
+    shell_box.extend(max_reach());
+    Hits hits;
+    for (unsigned int o = 0; o < current_.size(); ++o)
+    {
+      const auto &X         = current_[o];
+      const auto &triangles = parameters_.obstacles[o].triangles;
+      for (const unsigned v : shell_vertices_)
+      {
+        hits.clear();
+        obstacle_trees_[o].query(bgi::intersects(BoundingBox<3>({x[v], x[v]})),
+                                 std::back_inserter(hits));
+        for (const auto &hit : hits)
+        {
+          const auto &t = triangles[hit.second];
+          const auto  d =
+              point_triangle_distance(x[v], X[t[0]], X[t[1]], X[t[2]], false);
+          if (std::sqrt(d.value) >= reach(o))
+            continue;
+          candidates.push_back({{-1, -1, long(v)},
+                                feature_vertices(t, d.feature),
+                                std::sqrt(d.value),
+                                false});
+          found.push_back({true, o, v, hit.second, shell_vertex_area_[v]});
+        }
+        settle();
+      }
+      for (unsigned int j = 0; j < X.size(); ++j)
+      {
+        if (!shell_box.point_inside(X[j]))
+          continue;
+        hits.clear();
+        shell_tree.query(bgi::intersects(BoundingBox<3>({X[j], X[j]})),
+                         std::back_inserter(hits));
+        for (const auto &hit : hits)
+        {
+          const auto &t = shell_triangles_[hit.second];
+          const auto  d =
+              point_triangle_distance(X[j], x[t[0]], x[t[1]], x[t[2]], false);
+          if (std::sqrt(d.value) >= reach(o))
+            continue;
+          candidates.push_back({feature_vertices(t, d.feature),
+                                {-1, -1, long(j)},
+                                std::sqrt(d.value),
+                                true});
+          found.push_back(
+              {false, o, hit.second, j, shell_triangle_area_[hit.second] / 3});
+        }
+        settle();
+      }
+    }
+  }
+
+  Contact::Tree
+  Contact::shell_triangle_tree(const std::vector<Point<3>>     &x,
+                               const std::vector<Tensor<1, 3>> *dx,
+                               double                           inflation) const
+  {
+    std::vector<std::pair<BoundingBox<3>, unsigned>> boxes;
+    boxes.reserve(shell_triangles_.size());
+    std::vector<Point<3>> corners;
+    for (unsigned int k = 0; k < shell_triangles_.size(); ++k)
+    {
+      corners.clear();
+      for (const unsigned v : shell_triangles_[k])
+      {
+        corners.push_back(x[v]);
+        if (dx)
+          corners.push_back(x[v] + (*dx)[v]);
+      }
+      BoundingBox<3> box(corners);
+      box.extend(inflation);
+      boxes.emplace_back(box, k);
+    }
+    return pack_rtree(boxes);
+  }
+
+  double Contact::max_reach() const
+  {
+    double largest = 0;
+    for (unsigned int o = 0; o < current_.size(); ++o)
+      largest = std::max(largest, reach(o));
+    return largest;
+  }
+
+  /// The four points of a pair (the point first) and where the shell's
+  /// coordinates are among their 12: [0, 3) or [3, 12).
+  std::array<Point<3>, 4>
+  Contact::pair_points(const Pair                  &pair,
+                       const std::vector<Point<3>> &x,
+                       const std::vector<Point<3>> &X) const
+  {
+    if (pair.shell_vertex_side)
+    {
+      const auto &t =
+          parameters_.obstacles[pair.obstacle].triangles[pair.other];
+      return {x[pair.shell], X[t[0]], X[t[1]], X[t[2]]};
+    }
+    const auto &t = shell_triangles_[pair.shell];
+    return {X[pair.other], x[t[0]], x[t[1]], x[t[2]]};
+  }
+
+  void Contact::pair_dofs(const Pair &pair, model::DofBlock &block) const
+  {
+    const unsigned int n_vertices = pair.shell_vertex_side ? 1 : 3;
+    block.dofs.resize(3 * n_vertices);
+    for (unsigned int i = 0; i < n_vertices; ++i)
+    {
+      const unsigned v =
+          pair.shell_vertex_side ? pair.shell : shell_triangles_[pair.shell][i];
+      for (unsigned int c = 0; c < 3; ++c)
+        block.dofs[3 * i + c] = model_.vertex_dofs(v)[c];
+    }
+    if (block.vector.size() != block.dofs.size())
+    {
+      block.vector.reinit(block.dofs.size());
+      block.matrix.reinit(block.dofs.size(), block.dofs.size());
+    }
+  }
+} // namespace coshell::contact
+
+namespace coshell::contact
+{
+  using namespace dealii;
+
+  /// Energy w phi(g) of a pair, g = |d| - offset, w = stiffness * area:
+  /// its gradient and Hessian by the chain rule through d = sqrt(s),
+  /// dg = ds / (2d), d2g = d2s / (2d) - ds ds^T / (4 d^3).
+  void Contact::add_pair_terms(const model::ShellState & /*state*/,
+                               const model::BlockSink &sink,
+                               bool                    with_tangent)
+  {
+    for (auto &load : loads_)
+      load = ObstacleLoad();
+    vertex_force_ = 0;
+    std::fill(vertex_gap_.begin(), vertex_gap_.end(),
+              std::numeric_limits<double>::infinity());
+    model::DofBlock block;
+    normal_forces_.clear();
+    for (const Pair &pair : pairs_)
+    {
+      const auto points =
+          pair_points(pair, positions_, current_[pair.obstacle]);
+      const auto   s = point_triangle_distance(points[0], points[1], points[2],
+                                               points[3], true);
+      const double distance = std::sqrt(s.value);
+      const double gap      = distance - offset(pair.obstacle);
+      const bool   barrier  = parameters_.method == Method::barrier;
+      const ScalarDerivatives phi =
+          barrier ? log_barrier(gap, activation_)
+                  : smoothed_penalty(gap, parameters_.penalty_smoothing);
+      if (phi.first == 0 && phi.second == 0)
+        continue;
+      const double weight =
+          (barrier ? kappa_ : parameters_.penalty_stiffness) * pair.area;
+      Coordinates12 dg, gradient;
+      for (unsigned int i = 0; i < 12; ++i)
+      {
+        dg[i]       = s.gradient[i] / (2 * distance);
+        gradient[i] = weight * phi.first * dg[i];
+      }
+      const unsigned int first = pair.shell_vertex_side ? 0 : 3;
+      const unsigned int last  = pair.shell_vertex_side ? 3 : 12;
+      pair_dofs(pair, block);
+      for (unsigned int i = first; i < last; ++i)
+        block.vector[i - first] = -gradient[i]; // force on the shell
+      if (with_tangent)
+        pair_hessian(s, dg, distance, weight, phi, first, last, block.matrix);
+      record_pair(pair, points, gradient, gap, block);
+      // |d E / d distance| is the normal force of the pair, which
+      // friction will use in the next step.
+      normal_forces_.push_back({pair, weight * std::abs(phi.first),
+                                s.parameters,
+                                points[0] - closest_point(points, s)});
+      sink(block);
+    }
+    add_friction_terms(sink, with_tangent);
+  }
+
+  void Contact::pair_hessian(const SquaredDistance   &s,
+                             const Coordinates12     &dg,
+                             double                   distance,
+                             double                   weight,
+                             const ScalarDerivatives &phi,
+                             unsigned int             first,
+                             unsigned int             last,
+                             FullMatrix<double>      &matrix) const
+  {
+    const unsigned int  n = last - first;
+    std::vector<double> h(n * n);
+    for (unsigned int i = first; i < last; ++i)
+      for (unsigned int j = first; j < last; ++j)
+      {
+        const double d2g = s.hessian[i][j] / (2 * distance) -
+                           s.gradient[i] * s.gradient[j] /
+                               (4 * distance * distance * distance);
+        h[(i - first) * n + j - first] =
+            weight * (phi.second * dg[i] * dg[j] + phi.first * d2g);
+      }
+    if (parameters_.project_tangent)
+      project_to_positive_semidefinite(h, n);
+    for (unsigned int i = 0; i < n; ++i)
+      for (unsigned int j = 0; j < n; ++j)
+        matrix(i, j) = h[i * n + j];
+  }
+
+  /// The pair's force and moment on its obstacle (the gradient on the
+  /// obstacle's coordinates, the force on the obstacle being its
+  /// negative), and the vertex fields.
+  void Contact::record_pair(const Pair                    &pair,
+                            const std::array<Point<3>, 4> &points,
+                            const Coordinates12           &gradient,
+                            double                         gap,
+                            const model::DofBlock         &block)
+  {
+    ObstacleLoad &load = loads_[pair.obstacle];
+    ++load.active_pairs;
+    for (unsigned int k = 0; k < 4; ++k)
+    {
+      const bool on_obstacle = pair.shell_vertex_side ? k > 0 : k == 0;
+      if (!on_obstacle)
+        continue;
+      const Tensor<1, 3> f(
+          {-gradient[3 * k], -gradient[3 * k + 1], -gradient[3 * k + 2]});
+      load.force += f;
+      load.moment += cross_product_3d(points[k], f);
+    }
+    for (unsigned int i = 0; i < block.dofs.size(); ++i)
+      vertex_force_[block.dofs[i]] += block.vector[i];
+    const auto mark = [&](unsigned v)
+    { vertex_gap_[v] = std::min(vertex_gap_[v], gap); };
+    if (pair.shell_vertex_side)
+      mark(pair.shell);
+    else
+      for (const unsigned v : shell_triangles_[pair.shell])
+        mark(v);
+  }
+} // namespace coshell::contact

@@ -1,0 +1,87 @@
+#include <coshell/contact/contact.h>
+
+#include <stdexcept>
+
+namespace coshell::contact
+{
+  using namespace dealii;
+
+  void ContactParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Contact");
+    prm.declare_entry(
+        "Method", "none", Patterns::Selection("none|barrier|penalty"),
+        "none: no contact (nothing is built, no cost); barrier: the log "
+        "barrier of incremental potential contact with every Newton step "
+        "and obstacle move filtered by continuous collision detection, so "
+        "no iterate ever interpenetrates; penalty: a smoothed penalty on "
+        "the penetration (cheaper; lets in a penetration of order "
+        "pressure / Penalty stiffness, reported).");
+    prm.declare_entry("Activation distance", "0", Patterns::Double(0),
+                      "Barrier: the gap (distance minus half the shell "
+                      "thickness and the obstacle offset) below which the "
+                      "barrier acts, length units; the shell settles within "
+                      "it, so it bounds the geometric error of contact. 0: "
+                      "a tenth of the shell thickness.");
+    prm.declare_entry(
+        "Barrier stiffness", "0", Patterns::Double(0),
+        "Barrier: kappa in the energy kappa * area * b(gap), N/mm^3 in "
+        "mm-N units (pressure per length). 0: kappa = E / (h b''(d/2)), so "
+        "that the barrier at half the activation distance d is as stiff as "
+        "the shell across its half thickness. Doubled after a step whose "
+        "smallest gap falls below Stiffening gap ratio * d.");
+    prm.declare_entry("Stiffening gap ratio", "1e-3", Patterns::Double(0, 1),
+                      "Barrier: see Barrier stiffness (dimensionless).");
+    prm.declare_entry("Penalty stiffness", "0", Patterns::Double(0),
+                      "Penalty: contact pressure per penetration, N/mm^3 in "
+                      "mm-N units. 0: E / h.");
+    prm.declare_entry("Penalty smoothing", "0", Patterns::Double(0),
+                      "Penalty: the penetration over which the penalty "
+                      "stiffness ramps up from zero (C2 start), length "
+                      "units. 0: h / 100.");
+    prm.declare_entry("Projected tangent", "true", Patterns::Bool(),
+                      "Project each pair's Hessian onto the positive "
+                      "semi-definite matrices (as IPC does) so that Newton "
+                      "steps descend; false: the exact Hessian.");
+    prm.declare_entry(
+        "Stiction velocity", "1e-3", Patterns::Double(0),
+        "Friction: the tangential speed, length units / s, below which "
+        "Coulomb friction is smoothed to a viscous law (IPC's epsilon_v): "
+        "a sticking contact creeps at a fraction of it. In statics the "
+        "pseudo-time of a step stands for its duration.");
+    ObstacleParameters::declare_parameters(prm);
+    prm.leave_subsection();
+  }
+
+  void ContactParameters::parse_parameters(ParameterHandler  &prm,
+                                           const std::string &prm_directory)
+  {
+    prm.enter_subsection("Contact");
+    const std::string name = prm.get("Method");
+    method                 = name == "barrier"   ? Method::barrier
+                             : name == "penalty" ? Method::penalty
+                                                 : Method::none;
+    activation_distance    = prm.get_double("Activation distance");
+    barrier_stiffness      = prm.get_double("Barrier stiffness");
+    stiffening_gap_ratio   = prm.get_double("Stiffening gap ratio");
+    penalty_stiffness      = prm.get_double("Penalty stiffness");
+    penalty_smoothing      = prm.get_double("Penalty smoothing");
+    project_tangent        = prm.get_bool("Projected tangent");
+    stiction_velocity      = prm.get_double("Stiction velocity");
+    try
+    {
+      // Off costs nothing: the obstacle meshes are not even read.
+      if (enabled())
+        obstacles = ObstacleParameters::parse_parameters(prm, prm_directory);
+    }
+    catch (...)
+    {
+      prm.leave_subsection();
+      throw;
+    }
+    prm.leave_subsection();
+    if (enabled() && obstacles.empty())
+      throw std::runtime_error("Contact/Method is " + name +
+                               " but no obstacle has a Mesh file");
+  }
+} // namespace coshell::contact

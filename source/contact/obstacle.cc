@@ -1,0 +1,265 @@
+#include <coshell/contact/obstacle.h>
+#include <coshell/mesh/mesh.h>
+
+#include <deal.II/base/utilities.h>
+
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+namespace coshell::contact
+{
+  using namespace dealii;
+
+  std::vector<Point<3>> Obstacle::positions(double time) const
+  {
+    const auto            pose = motion.pose(time);
+    std::vector<Point<3>> x(vertices.size());
+    for (unsigned int i = 0; i < vertices.size(); ++i)
+      x[i] = pose(vertices[i]);
+    return x;
+  }
+
+  namespace
+  {
+    /// Merges coincident corners (STL lists every triangle's corners).
+    class VertexMerger
+    {
+    public:
+      explicit VertexMerger(std::vector<Point<3>> &vertices)
+          : vertices_(vertices)
+      {
+      }
+      unsigned int index(const Point<3> &p)
+      {
+        const auto key = std::array<double, 3>{{p[0], p[1], p[2]}};
+        const auto [it, inserted] =
+            known_.emplace(key, static_cast<unsigned int>(vertices_.size()));
+        if (inserted)
+          vertices_.push_back(p);
+        return it->second;
+      }
+
+    private:
+      std::vector<Point<3>>                        &vertices_;
+      std::map<std::array<double, 3>, unsigned int> known_;
+    };
+
+    bool read_ascii_stl(std::istream                         &in,
+                        std::vector<Point<3>>                &vertices,
+                        std::vector<std::array<unsigned, 3>> &triangles)
+    {
+      VertexMerger            merger(vertices);
+      std::string             word;
+      std::array<unsigned, 3> triangle{};
+      unsigned int            corner = 0;
+      while (in >> word)
+        if (word == "vertex")
+        {
+          Point<3> p;
+          if (!(in >> p[0] >> p[1] >> p[2]))
+            return false;
+          triangle[corner++] = merger.index(p);
+          if (corner == 3)
+            triangles.push_back(triangle), corner = 0;
+        }
+      return corner == 0;
+    }
+
+    bool read_binary_stl(std::istream                         &in,
+                         std::vector<Point<3>>                &vertices,
+                         std::vector<std::array<unsigned, 3>> &triangles)
+    {
+      char          header[80];
+      std::uint32_t count = 0;
+      if (!in.read(header, 80) || !in.read(reinterpret_cast<char *>(&count), 4))
+        return false;
+      VertexMerger merger(vertices);
+      for (std::uint32_t k = 0; k < count; ++k)
+      {
+        float         record[12];
+        std::uint16_t attribute;
+        if (!in.read(reinterpret_cast<char *>(record), sizeof(record)) ||
+            !in.read(reinterpret_cast<char *>(&attribute), 2))
+          return false;
+        std::array<unsigned, 3> triangle;
+        for (unsigned int c = 0; c < 3; ++c) // record[0..2]: the normal
+          triangle[c] = merger.index(Point<3>(
+              record[3 + 3 * c], record[4 + 3 * c], record[5 + 3 * c]));
+        triangles.push_back(triangle);
+      }
+      return true;
+    }
+
+    void read_stl(const std::string                    &file,
+                  std::vector<Point<3>>                &vertices,
+                  std::vector<std::array<unsigned, 3>> &triangles)
+    {
+      std::ifstream in(file, std::ios::binary);
+      if (!in)
+        throw std::runtime_error("cannot open STL file '" + file + "'");
+      const std::string text((std::istreambuf_iterator<char>(in)),
+                             std::istreambuf_iterator<char>());
+      // "solid" opens an ASCII file, but some binary files start so too:
+      // a binary file's size is 84 + 50 * (its triangle count).
+      std::uint32_t count = 0;
+      if (text.size() >= 84)
+        std::memcpy(&count, text.data() + 80, 4);
+      const bool binary =
+          text.size() >= 84 && text.size() == 84 + 50ull * count;
+      std::istringstream stream(text);
+      const bool ok = binary ? read_binary_stl(stream, vertices, triangles)
+                             : read_ascii_stl(stream, vertices, triangles);
+      if (!ok)
+        throw std::runtime_error("STL file '" + file +
+                                 "' is truncated or "
+                                 "malformed");
+    }
+  } // namespace
+
+  void read_triangle_surface(const std::string                    &file,
+                             std::vector<Point<3>>                &vertices,
+                             std::vector<std::array<unsigned, 3>> &triangles)
+  {
+    vertices.clear();
+    triangles.clear();
+    if (!std::filesystem::is_regular_file(file))
+      throw std::runtime_error("mesh file '" + file + "' does not exist");
+    const auto extension = std::filesystem::path(file).extension().string();
+    if (extension == ".stl" || extension == ".STL")
+      read_stl(file, vertices, triangles);
+    else
+    {
+      mesh::Surface surface;
+      mesh::read_gmsh(surface, file, 0);
+      vertices = surface.get_vertices();
+      for (const auto &cell : surface.active_cell_iterators())
+      {
+        if (cell->n_vertices() != 3)
+          throw std::runtime_error("mesh file '" + file +
+                                   "' has a cell that is not a triangle");
+        triangles.push_back({cell->vertex_index(0), cell->vertex_index(1),
+                             cell->vertex_index(2)});
+      }
+    }
+    if (triangles.empty())
+      throw std::runtime_error("mesh file '" + file + "' has no triangles");
+  }
+
+  namespace
+  {
+    std::string obstacle_section(unsigned int number)
+    {
+      return "Obstacle " + std::to_string(number);
+    }
+
+    /// Lumped areas; throws naming the first degenerate triangle.
+    std::vector<double> vertex_areas(const Obstacle &obstacle)
+    {
+      std::vector<double> area(obstacle.vertices.size(), 0);
+      double              largest = 0;
+      for (const auto &t : obstacle.triangles)
+        for (const unsigned v : t)
+          largest = std::max(
+              largest, obstacle.vertices[v].distance(obstacle.vertices[t[0]]));
+      for (unsigned int k = 0; k < obstacle.triangles.size(); ++k)
+      {
+        const auto  &t = obstacle.triangles[k];
+        const auto  &x = obstacle.vertices;
+        const double a =
+            0.5 * cross_product_3d(x[t[1]] - x[t[0]], x[t[2]] - x[t[0]]).norm();
+        if (!(a > 1e-12 * largest * largest))
+        {
+          std::ostringstream message;
+          message << "triangle " << k << " (vertices " << x[t[0]] << "; "
+                  << x[t[1]] << "; " << x[t[2]] << ") is degenerate";
+          throw std::runtime_error(message.str());
+        }
+        for (const unsigned v : t)
+          area[v] += a / 3;
+      }
+      return area;
+    }
+
+    Obstacle parse_obstacle(ParameterHandler  &prm,
+                            const std::string &file,
+                            const std::string &where)
+    {
+      Obstacle obstacle;
+      obstacle.name = Utilities::trim(prm.get("Name"));
+      read_triangle_surface(file, obstacle.vertices, obstacle.triangles);
+      obstacle.vertex_area = vertex_areas(obstacle);
+      obstacle.motion.parse_entries(prm, where);
+      obstacle.friction_coefficient = prm.get_double("Friction coefficient");
+      obstacle.offset               = prm.get_double("Offset");
+      if (!(obstacle.friction_coefficient >= 0))
+        throw std::runtime_error(
+            "Friction coefficient: " + prm.get("Friction coefficient") +
+            " is negative; it must be >= 0");
+      if (!(obstacle.offset >= 0))
+        throw std::runtime_error("Offset: " + prm.get("Offset") +
+                                 " is negative; it must be >= 0");
+      return obstacle;
+    }
+  } // namespace
+
+  void ObstacleParameters::declare_parameters(ParameterHandler &prm)
+  {
+    for (unsigned int k = 1; k <= max_obstacles; ++k)
+    {
+      prm.enter_subsection(obstacle_section(k));
+      prm.declare_entry("Mesh file", "", Patterns::Anything(),
+                        "The obstacle's surface: a gmsh .msh or .geo file "
+                        "(every physical surface) or an STL file, "
+                        "coordinates in length units; relative paths are "
+                        "looked up beside the prm file. Empty: no obstacle.");
+      prm.declare_entry("Name", "obstacle " + std::to_string(k),
+                        Patterns::Anything(),
+                        "Name in messages and in contact_forces.csv.");
+      model::RigidMotion::declare_entries(prm);
+      prm.declare_entry("Friction coefficient", "0", Patterns::Double(),
+                        "Coulomb friction coefficient mu against the shell "
+                        "(dimensionless, >= 0).");
+      prm.declare_entry("Offset", "0", Patterns::Double(),
+                        "Distance kept between the obstacle and the shell's "
+                        "surface, added to half the shell thickness (length "
+                        "units, >= 0).");
+      prm.leave_subsection();
+    }
+  }
+
+  std::vector<Obstacle>
+  ObstacleParameters::parse_parameters(ParameterHandler  &prm,
+                                       const std::string &prm_directory)
+  {
+    std::vector<Obstacle> obstacles;
+    for (unsigned int k = 1; k <= max_obstacles; ++k)
+    {
+      prm.enter_subsection(obstacle_section(k));
+      const std::string where = "Contact/" + obstacle_section(k);
+      const std::string file  = mesh::resolve_path(
+           Utilities::trim(prm.get("Mesh file")), prm_directory);
+      const std::string name = Utilities::trim(prm.get("Name"));
+      try
+      {
+        if (!file.empty())
+          obstacles.push_back(parse_obstacle(prm, file, where));
+      }
+      catch (const std::exception &error)
+      {
+        prm.leave_subsection();
+        const std::string message = error.what();
+        // Motion errors already start with the subsection.
+        throw std::runtime_error(message.rfind(where, 0) == 0
+                                     ? message
+                                     : where + " ('" + name + "'): " + message);
+      }
+      prm.leave_subsection();
+    }
+    return obstacles;
+  }
+} // namespace coshell::contact

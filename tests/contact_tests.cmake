@@ -1,0 +1,76 @@
+# Contact with rigid meshed obstacles: equilibrium with the reaction,
+# the gap over every iterate, friction, wrapping and a funnel, and bad
+# input. The measured values are appended to output/contact_report.csv.
+set(CHECK_CONTACT ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_contact.py)
+set(CONTACT_REPORT ${CMAKE_CURRENT_BINARY_DIR}/output/contact_report.csv)
+
+# coshell_contact_test(NAME PRM ARGS check_contact arguments...)
+function(coshell_contact_test name prm)
+  cmake_parse_arguments(T "" "" "ARGS" ${ARGN})
+  add_test(NAME ${name}
+           COMMAND ${COSHELL_PYTHON} ${CHECK_CONTACT}
+                   --coshell $<TARGET_FILE:coshell>
+                   --prm ${COSHELL_PRM}/${prm}
+                   --output ${CMAKE_CURRENT_BINARY_DIR}/output/${name}
+                   --report ${CONTACT_REPORT} ${T_ARGS})
+  set_tests_properties(${name} PROPERTIES LABELS contact)
+endfunction()
+
+# A plate resting on a plane under gravity: the plane carries the weight
+# rho h A g = 1.2e-9 * 0.5 * 100 * 9810 = 5.886e-4 N, within 1e-6, and
+# its moment about the origin is that of the weight at the plate's centre
+# (5, 5): mx = -5 W, my = 5 W. The barrier keeps the gap positive at every
+# iterate; the penalty lets in a penetration (reported).
+coshell_contact_test(contact.plate_on_plane.barrier contact/plate_on_plane.prm
+  ARGS --reaction fz -0.0005886 1e-6 --reaction mx -0.002943 1e-6
+  --reaction my 0.002943 1e-6 --gap-nonnegative --gap-below 0.05
+  --active-pairs 81)
+# Dropped from the same place (dynamics, backward Euler, dt = 1 ms, 40
+# steps): at rest on the plane, the same reaction. The penalty's
+# penetration x balances the weight per area p = rho h g = 5.886e-6 MPa in
+# the penalty's cubic start (x < eps = h/100): k x^2 / (2 eps) = p, so
+# x = sqrt(2 eps p / k) = 1.7157e-4 mm with k = E/h = 2 N/mm^3.
+coshell_contact_test(contact.plate_on_plane.barrier_dynamic contact/plate_on_plane.prm
+  ARGS --set "Analysis/Type=dynamic"
+  --reaction fz -0.0005886 1e-6 --gap-nonnegative --gap-below 0.05)
+coshell_contact_test(contact.plate_on_plane.penalty_dynamic contact/plate_on_plane.prm
+  ARGS --set "Analysis/Type=dynamic" --set "Contact/Method=penalty"
+  --reaction fz -0.0005886 1e-6 --last-gap -0.00017157 1e-3)
+
+# Friction on an incline (gravity tilted by theta, mu = 0.2, dynamics):
+# at theta = 20 deg (tan theta > mu) the plate slides with
+# a = g (sin theta - mu cos theta) = 1511.54 mm/s^2, fitted over
+# t in [0.01, 0.04] s once it has landed, within 2 %; without friction
+# with g sin theta = 3355.22 mm/s^2. At theta = 10 deg (tan theta < mu) it
+# sticks: after landing it creeps less than 1e-4 mm in 25 ms (sliding
+# freely it would go 2.8 mm).
+set(incline contact/incline_friction.prm)
+coshell_contact_test(contact.incline_friction.sliding ${incline}
+  ARGS --slope centre_ux 0.01 0.04 1511.54 0.02 --gap-nonnegative)
+coshell_contact_test(contact.incline_friction.frictionless ${incline}
+  ARGS --set "Contact/Obstacle 1/Friction coefficient=0"
+  --slope centre_ux 0.01 0.04 3355.217 0.02 --gap-nonnegative)
+coshell_contact_test(contact.incline_friction.sticking ${incline}
+  ARGS --set "Loads/Gravity=1703.489, 0, -9660.965"
+  --change centre_ux 0.015 0.04 1e-4 --gap-nonnegative)
+
+# Bad input names the obstacle and what is wrong with it.
+set(plane_scene ${COSHELL_PRM}/contact/plate_on_plane.prm)
+coshell_bad_input_test(contact_missing_obstacle_mesh
+  "Contact/Obstacle 1 .'plane'.: mesh file .*no_such_obstacle.stl' does not exist"
+  ${plane_scene} --set "Contact/Obstacle 1/Mesh file=no_such_obstacle.stl")
+coshell_bad_input_test(contact_empty_obstacle_mesh
+  "Contact/Obstacle 1 .'plane'.: mesh file .*empty_obstacle.stl' has no triangles"
+  ${plane_scene} --set "Contact/Obstacle 1/Mesh file=${data}/empty_obstacle.stl")
+coshell_bad_input_test(contact_shell_starts_inside
+  "the shell starts inside obstacle 'plane' .Contact/Obstacle 1.: shell vertex"
+  ${plane_scene} --set "Contact/Obstacle 1/Translation=0$<SEMICOLON> 0$<SEMICOLON> -0.2")
+coshell_bad_input_test(contact_negative_friction
+  "Contact/Obstacle 1 .'plane'.: Friction coefficient: -0.1 is negative"
+  ${plane_scene} --set "Contact/Obstacle 1/Friction coefficient=-0.1")
+coshell_bad_input_test(contact_unparsable_motion
+  "Contact/Obstacle 1/Translation: cannot parse '0.*-0.3..'"
+  ${plane_scene} --set "Contact/Obstacle 1/Translation=0$<SEMICOLON> 0$<SEMICOLON> -0.3**")
+coshell_bad_input_test(contact_with_arc_length
+  "Contact works with load control, not with the arc-length method"
+  ${plane_scene} --set "Nonlinear solver/Method=arc length")

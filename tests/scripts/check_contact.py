@@ -1,0 +1,164 @@
+#!/usr/bin/python3
+"""Runs a contact scene and checks contact_forces.csv (and the other
+outputs) against references given here.
+
+  check_contact.py --coshell BIN --prm FILE --output DIR [--set A/B=v ...]
+     [--reaction COMPONENT VALUE RTOL]  the last step's force on the
+                          obstacles (summed), component fx..mz, is VALUE
+                          within RTOL of |VALUE|
+     [--gap-nonnegative]  min_distance >= 0 on every row (every iterate)
+     [--gap-below VALUE]  the last step's smallest gap is below VALUE
+                          (the shell is in contact)
+     [--last-gap VALUE RTOL]  the last step's smallest gap is VALUE within
+                          RTOL of |VALUE| (a penalty's penetration)
+     [--active-pairs MIN] the last step has at least MIN active pairs
+     [--final QOI VALUE RTOL]  the last value of a quantity of interest
+                          (load_displacement.csv or time_history.csv)
+     [--slope QOI T0 T1 VALUE RTOL]  least-squares d2(QOI)/dt2 over the
+                          rows with T0 <= time <= T1 (a uniform
+                          acceleration) is VALUE within RTOL
+     [--change QOI T0 T1 MAX]  |QOI(T1) - QOI(T0)| <= MAX (rows nearest
+                          those times): it stays put
+     [--max-abs QOI LIMIT]  |QOI| stays below LIMIT over the run
+     [--report FILE]      append 'test,name,value' lines of what was measured
+Prints a line per check and 'N passed, M failed'; exits 1 on a failure.
+"""
+import argparse
+import csv
+import math
+import os
+import sys
+
+from scene_runner import add_scene_arguments, run_scene
+
+
+def read_rows(path):
+    with open(path) as f:
+        return list(csv.DictReader(f))
+
+
+def quantity_rows(output):
+    for name in ("time_history.csv", "load_displacement.csv"):
+        path = os.path.join(output, name)
+        if os.path.exists(path):
+            return read_rows(path)
+    sys.exit("FAIL: no time_history.csv or load_displacement.csv")
+
+
+def last_step_rows(rows):
+    last = max(int(r["step"]) for r in rows)
+    return [r for r in rows if int(r["step"]) == last]
+
+
+def second_derivative(times, values):
+    """Least-squares fit of a + b t + c t^2: returns 2 c."""
+    n = len(times)
+    t0 = sum(times) / n
+    ts = [t - t0 for t in times]
+    # Normal equations of the quadratic fit.
+    s = [sum(t ** k for t in ts) for k in range(5)]
+    y = [sum(v * t ** k for t, v in zip(ts, values)) for k in range(3)]
+    a = [[s[0], s[1], s[2]], [s[1], s[2], s[3]], [s[2], s[3], s[4]]]
+    # Cramer's rule for the t^2 coefficient.
+    def det(m):
+        return (m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
+                - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+                + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]))
+    c = [row[:2] + [y[i]] for i, row in enumerate(a)]
+    return 2 * det(c) / det(a)
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    add_scene_arguments(parser)
+    parser.add_argument("--reaction", nargs=3, action="append", default=[])
+    parser.add_argument("--gap-nonnegative", action="store_true")
+    parser.add_argument("--gap-below", type=float)
+    parser.add_argument("--last-gap", nargs=2, type=float)
+    parser.add_argument("--active-pairs", type=int)
+    parser.add_argument("--final", nargs=3, action="append", default=[])
+    parser.add_argument("--slope", nargs=5, action="append", default=[])
+    parser.add_argument("--max-abs", nargs=2, action="append", default=[])
+    parser.add_argument("--change", nargs=4, action="append", default=[])
+    parser.add_argument("--report")
+    args = parser.parse_args()
+
+    run_scene(args.coshell, args.prm, args.output, args.set)
+    forces = read_rows(os.path.join(args.output, "contact_forces.csv"))
+    last = last_step_rows(forces)
+    measured, failures, passed = [], 0, 0
+
+    def check(ok, text):
+        nonlocal failures, passed
+        print(("PASS: " if ok else "FAIL: ") + text)
+        passed += ok
+        failures += not ok
+
+    for component, value, rtol in args.reaction:
+        total = sum(float(r[component]) for r in last)
+        error = abs(total - float(value)) / abs(float(value))
+        measured.append((f"reaction_{component}_relative_error", error))
+        check(error <= float(rtol),
+              f"reaction {component} = {total:.10g}, expected {value}, "
+              f"relative error {error:.3g} <= {rtol}")
+    gaps = [float(r["min_distance"]) for r in forces]
+    finite_gaps = [g for g in gaps if math.isfinite(g)]
+    smallest = min(finite_gaps) if finite_gaps else math.inf
+    measured.append(("smallest_gap", smallest))
+    if args.gap_nonnegative:
+        check(smallest >= 0, f"smallest gap over every iterate {smallest:.6g} >= 0")
+    if args.gap_below is not None:
+        gap = min(float(r["min_distance"]) for r in last)
+        check(gap < args.gap_below,
+              f"last step's smallest gap {gap:.6g} < {args.gap_below} (in contact)")
+    if args.last_gap:
+        gap = min(float(r["min_distance"]) for r in last)
+        value, rtol = args.last_gap
+        error = abs(gap - value) / abs(value)
+        measured.append(("last_gap", gap))
+        check(error <= rtol, f"last step's smallest gap {gap:.8g}, expected "
+              f"{value:.8g}, relative error {error:.3g} <= {rtol}")
+    if args.active_pairs is not None:
+        pairs = sum(int(float(r["active_pairs"])) for r in last)
+        check(pairs >= args.active_pairs,
+              f"active pairs at the last step {pairs} >= {args.active_pairs}")
+    rows = (quantity_rows(args.output)
+            if args.final or args.slope or args.max_abs or args.change else [])
+    for name, value, rtol in args.final:
+        v = float(rows[-1][name])
+        error = abs(v - float(value)) / abs(float(value))
+        measured.append((f"{name}_relative_error", error))
+        check(error <= float(rtol),
+              f"final {name} = {v:.8g}, expected {value}, relative error "
+              f"{error:.3g} <= {rtol}")
+    for name, t0, t1, value, rtol in args.slope:
+        window = [r for r in rows if float(t0) <= float(r["time"]) <= float(t1)]
+        a = second_derivative([float(r["time"]) for r in window],
+                              [float(r[name]) for r in window])
+        error = abs(a - float(value)) / abs(float(value))
+        measured.append((f"{name}_acceleration", a))
+        check(error <= float(rtol),
+              f"d2({name})/dt2 over t in [{t0}, {t1}] = {a:.6g}, expected "
+              f"{value}, relative error {error:.3g} <= {rtol}")
+    for name, t0, t1, limit in args.change:
+        def at(t):
+            return float(min(rows, key=lambda r: abs(float(r["time"]) - float(t)))[name])
+        change = abs(at(t1) - at(t0))
+        measured.append((f"{name}_change", change))
+        check(change <= float(limit),
+              f"|{name}({t1}) - {name}({t0})| = {change:.6g} <= {limit}")
+    for name, limit in args.max_abs:
+        largest = max(abs(float(r[name])) for r in rows)
+        measured.append((f"{name}_max_abs", largest))
+        check(largest <= float(limit), f"max |{name}| = {largest:.6g} <= {limit}")
+    if args.report:
+        test = os.path.basename(os.path.normpath(args.output))
+        with open(args.report, "a") as f:
+            for name, value in measured:
+                f.write(f"{test},{name},{value:.10g}\n")
+    print(f"{passed} passed, {failures} failed")
+    sys.exit(1 if failures else 0)
+
+
+if __name__ == "__main__":
+    main()

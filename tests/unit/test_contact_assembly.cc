@@ -1,0 +1,152 @@
+// The contact contribution of a small plate over a rigid plane, assembled
+// as ShellProblem does: its tangent against central differences of its
+// forces, with the barrier and with friction, and the equal and opposite
+// force on the obstacle.
+
+#include <coshell/contact/contact.h>
+#include <coshell/io/expressions.h>
+#include <coshell/mesh/mesh.h>
+
+#include <deal.II/lac/full_matrix.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace
+{
+  using namespace coshell;
+  using dealii::Point;
+  using dealii::Vector;
+
+  /// Four triangles covering [-5, 5]^2 at height z, around a vertex that
+  /// lies under the plate (so obstacle vertices meet shell triangles too).
+  contact::Obstacle plane(double z, double friction)
+  {
+    contact::Obstacle obstacle;
+    obstacle.name        = "plane";
+    obstacle.vertices    = {Point<3>(-5, -5, z), Point<3>(5, -5, z),
+                            Point<3>(5, 5, z), Point<3>(-5, 5, z),
+                            Point<3>(1.1, 0.7, z)};
+    obstacle.triangles   = {{0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}};
+    obstacle.vertex_area = {1, 1, 1, 1, 1}; // not used by contact
+    obstacle.motion.translation =
+        io::parse_expressions<1>("0; 0; 0", 3, "x,t", true, "t", "test");
+    obstacle.motion.angle =
+        io::parse_expressions<1>("0", 1, "x,t", true, "t", "test");
+    obstacle.motion.axis          = dealii::Tensor<1, 3>({0, 0, 1});
+    obstacle.friction_coefficient = friction;
+    return obstacle;
+  }
+
+  struct Assembled
+  {
+    Vector<double>             force;
+    dealii::FullMatrix<double> tangent;
+  };
+
+  Assembled assemble(contact::ContactContribution &contribution,
+                     const model::ShellState      &state,
+                     double                        time,
+                     unsigned int                  n)
+  {
+    Assembled out{Vector<double>(n), dealii::FullMatrix<double>(n, n)};
+    const model::EvaluationPoint point{state, time, 1, 0, 0};
+    contribution.prepare(point);
+    contribution.add_blocks(
+        point,
+        [&](const model::DofBlock &block)
+        {
+          for (unsigned int i = 0; i < block.dofs.size(); ++i)
+          {
+            out.force[block.dofs[i]] += block.vector[i];
+            for (unsigned int j = 0; j < block.dofs.size(); ++j)
+              out.tangent(block.dofs[i], block.dofs[j]) += block.matrix(i, j);
+          }
+        },
+        true);
+    return out;
+  }
+
+  /// Plate [0, 2]^2, h = 1 (offset 0.5), over the plane z = -0.55 (gap
+  /// 0.05 < activation 0.1); after a converged state at t = 0 the plate is
+  /// moved sideways and down, and the tangent at t = 1 is checked.
+  void check_tangent(double friction)
+  {
+    mesh::Surface surface;
+    mesh::make_rectangle(surface, 2, 2, 2, 2, mesh::TrianglePattern::crossed);
+    model::ElementParameters element;
+    element.material.thickness = 1;
+    const model::ShellModel    model(surface, element,
+                                     dealii::Tensor<1, 3>({0, 0, 1}));
+    model::ShellState          state(model, false);
+    contact::ContactParameters parameters;
+    parameters.method              = contact::Method::barrier;
+    parameters.activation_distance = 0.1;
+    parameters.barrier_stiffness   = 1;
+    parameters.stiction_velocity   = 0.01;
+    parameters.project_tangent     = false;
+    parameters.obstacles           = {plane(-0.55, friction)};
+    contact::Contact contact(model, parameters);
+    contact.check_initial_configuration(state, 0);
+    contact::ContactContribution contribution(contact);
+    const unsigned int           n = model.n_dofs();
+    assemble(contribution, state, 0, n);
+    contribution.save();
+    // A sliding and sinking motion, different at each vertex.
+    Vector<double> move(n);
+    for (unsigned int v = 0; v < surface.n_vertices(); ++v)
+    {
+      const auto &dofs = model.vertex_dofs(v);
+      move[dofs[0]]    = 0.004 + 0.001 * v;
+      move[dofs[1]]    = -0.002 * (v % 3);
+      move[dofs[2]]    = -0.01 - 0.002 * (v % 2);
+    }
+    state.apply_increment(move);
+    const Assembled at    = assemble(contribution, state, 1, n);
+    double          scale = 0;
+    for (unsigned int i = 0; i < n; ++i)
+      for (unsigned int j = 0; j < n; ++j)
+        scale = std::max(scale, std::abs(at.tangent(i, j)));
+    ASSERT_GT(scale, 0);
+    const double h = 1e-7;
+    for (unsigned int j = 0; j < n; ++j)
+    {
+      if (j % 6 >= 3) // rotations: contact does not see them
+        continue;
+      Vector<double> step(n);
+      step[j] = h;
+      state.apply_increment(step);
+      const Vector<double> plus = assemble(contribution, state, 1, n).force;
+      step[j]                   = -2 * h;
+      state.apply_increment(step);
+      const Vector<double> minus = assemble(contribution, state, 1, n).force;
+      step[j]                    = h;
+      state.apply_increment(step);
+      for (unsigned int i = 0; i < n; ++i)
+        EXPECT_NEAR(-(plus[i] - minus[i]) / (2 * h), at.tangent(i, j),
+                    1e-5 * scale)
+            << "entry " << i << ", " << j;
+    }
+    // Action and reaction: the force on the plane balances the shell's.
+    assemble(contribution, state, 1, n);
+    dealii::Tensor<1, 3> on_shell;
+    for (unsigned int v = 0; v < surface.n_vertices(); ++v)
+      for (unsigned int c = 0; c < 3; ++c)
+        on_shell[c] += at.force[model.vertex_dofs(v)[c]];
+    const auto &load = contact.obstacle_loads()[0];
+    for (unsigned int c = 0; c < 3; ++c)
+      EXPECT_NEAR(load.force[c], -on_shell[c], 1e-12 * on_shell.norm());
+    EXPECT_GT(load.active_pairs, 0u);
+  }
+} // namespace
+
+TEST(ContactAssembly, BarrierTangentMatchesFiniteDifferences)
+{
+  check_tangent(0);
+}
+
+TEST(ContactAssembly, FrictionTangentMatchesFiniteDifferences)
+{
+  check_tangent(0.5);
+}
