@@ -54,6 +54,30 @@ coshell_contact_test(contact.incline_friction.sticking ${incline}
   ARGS --set "Loads/Gravity=1703.489, 0, -9660.965"
   --change centre_ux 0.015 0.04 1e-4 --gap-nonnegative)
 
+# Funnel: a plunger pushes a 4 mm strip through a cone into a 3 mm tube
+# (dynamics, 0.85 s). The barrier keeps every iterate of every step apart
+# (smallest gap >= 0) and the plunger pushes (force on it along -x between
+# 1 mN and 1 N: a sanity bound, not a reference). The penalty only
+# reports its largest penetration: here it is 0.1 mm, the half thickness,
+# which means the strip's mid-surface crossed an obstacle's surface (the
+# penalty has no step filter; a stiffer penalty, 500 N/mm^3, does no
+# better). That is the failure the barrier exists to prevent; the test
+# asserts only that the penetration is reported. Hard case: the barrier
+# with 5x larger steps (0.5 mm of plunger travel per step, more than
+# twice the activation distance plus the strip's half thickness): still
+# no interpenetration.
+set(funnel contact/funnel.prm)
+coshell_contact_test(contact.funnel.barrier ${funnel}
+  ARGS --set "Output/Write VTU=false" --gap-nonnegative
+  --force-range 2 fx -1 -0.001 --summary smallest_gap 0 1)
+coshell_contact_test(contact.funnel.penalty ${funnel}
+  ARGS --set "Output/Write VTU=false" --set "Contact/Method=penalty"
+  --force-range 2 fx -1 -0.001 --summary largest_penetration 1e-9 0.1)
+coshell_contact_test(contact.funnel.large_steps ${funnel}
+  ARGS --set "Output/Write VTU=false" --set "Time integration/Time step=0.05"
+  --set "Time integration/Maximum time step=0.05" --gap-nonnegative
+  --summary smallest_gap 0 1)
+
 # Bad input names the obstacle and what is wrong with it.
 set(plane_scene ${COSHELL_PRM}/contact/plate_on_plane.prm)
 coshell_bad_input_test(contact_missing_obstacle_mesh

@@ -4,6 +4,7 @@
 #include <coshell/contact/distances.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <set>
@@ -157,6 +158,29 @@ namespace coshell::contact
   using namespace dealii;
   namespace bgi = boost::geometry::index;
 
+  namespace
+  {
+    /// Adds the seconds since its construction to 'total' when it ends.
+    class Stopwatch
+    {
+    public:
+      explicit Stopwatch(double &total)
+          : total_(total), start_(std::chrono::steady_clock::now())
+      {
+      }
+      ~Stopwatch()
+      {
+        total_ += std::chrono::duration<double>(
+                      std::chrono::steady_clock::now() - start_)
+                      .count();
+      }
+
+    private:
+      double                               &total_;
+      std::chrono::steady_clock::time_point start_;
+    };
+  } // namespace
+
   /// Largest fraction of the motion (shell by dx, obstacle by dX; either
   /// may be absent) that keeps every pair of this obstacle farther apart
   /// than its offset: additive CCD on the candidates whose swept boxes
@@ -230,6 +254,7 @@ namespace coshell::contact
   {
     if (parameters_.method != Method::barrier)
       return 1;
+    const Stopwatch             watch(timing_.filter);
     const std::vector<Point<3>> x = shell_positions(state);
     std::vector<Tensor<1, 3>>   dx(x.size());
     for (const unsigned v : shell_vertices_)
@@ -284,8 +309,14 @@ namespace coshell::contact
     }
   }
 
+  const Contact::Timing &Contact::timing() const
+  {
+    return timing_;
+  }
+
   void Contact::prepare(const model::ShellState &state, double time)
   {
+    const Stopwatch watch(timing_.detection);
     set_target_time(time);
     positions_ = shell_positions(state);
     advance_obstacles(positions_);

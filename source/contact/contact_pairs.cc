@@ -6,6 +6,7 @@
 #include <coshell/contact/distances.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <set>
@@ -87,8 +88,8 @@ namespace coshell::contact
     }
   } // namespace
 
-  /// Pairs within reach, one per pair of closest features, each a local
-  /// minimum of the distance (see local_minima()).
+  /// Pairs within reach, one per pair of closest features (and, with
+  /// Pairs = local minima, only the local minima of the distance).
   void Contact::find_pairs(const std::vector<Point<3>> &x)
   {
     pairs_.clear();
@@ -97,7 +98,10 @@ namespace coshell::contact
     std::vector<Pair>             found;
     const auto                    settle = [&]()
     {
-      const std::vector<bool> keep = local_minima(candidates);
+      const std::vector<bool> keep =
+          parameters_.local_minima_only
+              ? local_minima(candidates)
+              : std::vector<bool>(candidates.size(), true);
       for (unsigned int k = 0; k < candidates.size(); ++k)
       {
         const auto               &c   = candidates[k];
@@ -247,6 +251,7 @@ namespace coshell::contact
                                const model::BlockSink &sink,
                                bool                    with_tangent)
   {
+    const auto start = std::chrono::steady_clock::now();
     for (auto &load : loads_)
       load = ObstacleLoad();
     vertex_force_ = 0;
@@ -289,9 +294,56 @@ namespace coshell::contact
       normal_forces_.push_back({pair, weight * std::abs(phi.first),
                                 s.parameters,
                                 points[0] - closest_point(points, s)});
+      if (pending_)
+        anticipate_obstacle(pair, s, dg, distance, weight, phi, block);
       sink(block);
     }
     add_friction_terms(sink, with_tangent);
+    timing_.pair_terms +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+            .count();
+  }
+
+  /// While an obstacle is held back short of its position, the shell's
+  /// residual gets the linearized effect of the rest of the obstacle's
+  /// move, -K_so dX (as an inhomogeneous constraint does in deal.II's
+  /// step-44), so the next Newton correction already moves the shell out
+  /// of the obstacle's way; the term vanishes once the obstacle is there.
+  void Contact::anticipate_obstacle(const Pair              &pair,
+                                    const SquaredDistance   &s,
+                                    const Coordinates12     &dg,
+                                    double                   distance,
+                                    double                   weight,
+                                    const ScalarDerivatives &phi,
+                                    model::DofBlock         &block) const
+  {
+    const unsigned int o = pair.obstacle;
+    // The obstacle's points among the four, and their remaining moves.
+    std::array<Tensor<1, 3>, 4> remaining;
+    const auto                 &triangles = parameters_.obstacles[o].triangles;
+    for (unsigned int k = 0; k < 4; ++k)
+    {
+      const bool on_obstacle = pair.shell_vertex_side ? k > 0 : k == 0;
+      if (!on_obstacle)
+        continue;
+      const unsigned int v =
+          pair.shell_vertex_side ? triangles[pair.other][k - 1] : pair.other;
+      remaining[k] = target_[o][v] - current_[o][v];
+    }
+    const unsigned int first = pair.shell_vertex_side ? 0 : 3;
+    const unsigned int last  = pair.shell_vertex_side ? 3 : 12;
+    for (unsigned int i = first; i < last; ++i)
+      for (unsigned int j = 0; j < 12; ++j)
+      {
+        if (j >= first && j < last)
+          continue;
+        const double d2g = s.hessian[i][j] / (2 * distance) -
+                           s.gradient[i] * s.gradient[j] /
+                               (4 * distance * distance * distance);
+        const double k_so =
+            weight * (phi.second * dg[i] * dg[j] + phi.first * d2g);
+        block.vector[i - first] -= k_so * remaining[j / 3][j % 3];
+      }
   }
 
   void Contact::pair_hessian(const SquaredDistance   &s,

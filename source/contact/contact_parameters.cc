@@ -44,6 +44,16 @@ namespace coshell::contact
                       "semi-definite matrices (as IPC does) so that Newton "
                       "steps descend; false: the exact Hessian.");
     prm.declare_entry(
+        "Pairs", "all", Patterns::Selection("all|local minima"),
+        "all: every shell vertex-obstacle triangle and obstacle vertex-shell "
+        "triangle pair within reach, one per pair of closest features (as "
+        "IPC): the energy is continuous, but a vertex over a flat face also "
+        "feels the neighbouring triangles' edges, a lateral force of order "
+        "1e-4 of the normal one. local minima: only pairs whose distance is "
+        "a local minimum over the surface (a frictionless plane then pushes "
+        "exactly along its normal), exact for flat and convex obstacles but "
+        "discontinuous where a vertex passes a concave edge.");
+    prm.declare_entry(
         "Stiction velocity", "1e-3", Patterns::Double(0),
         "Friction: the tangential speed, length units / s, below which "
         "Coulomb friction is smoothed to a viscous law (IPC's epsilon_v): "
@@ -68,6 +78,7 @@ namespace coshell::contact
     penalty_smoothing      = prm.get_double("Penalty smoothing");
     project_tangent        = prm.get_bool("Projected tangent");
     stiction_velocity      = prm.get_double("Stiction velocity");
+    local_minima_only      = prm.get("Pairs") == "local minima";
     try
     {
       // Off costs nothing: the obstacle meshes are not even read.

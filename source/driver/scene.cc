@@ -17,6 +17,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <limits>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
@@ -448,8 +449,11 @@ namespace coshell::driver
 
     io::CsvFile                curve, history;
     std::optional<io::CsvFile> time_history, contact_forces;
-    /// The contact of the run (nullptr when Contact is off).
-    contact::Contact *contact = nullptr;
+    /// The contact of the run (nullptr when Contact is off), and the
+    /// extremes of its gap over every iterate of the run.
+    contact::Contact *contact      = nullptr;
+    double            smallest_gap = std::numeric_limits<double>::infinity();
+    double            largest_penetration = 0;
     unsigned int      step = 0, last_written = 0;
     /// Energy bookkeeping of the dynamic stages: work of the loads and
     /// reactions, energy dissipated by damping and drag (trapezoidal in
@@ -509,6 +513,9 @@ namespace coshell::driver
   {
     if (!out.contact)
       return;
+    out.smallest_gap = std::min(out.smallest_gap, out.contact->smallest_gap());
+    out.largest_penetration =
+        std::max(out.largest_penetration, out.contact->largest_penetration());
     const auto &loads = out.contact->obstacle_loads();
     for (unsigned int o = 0; o < loads.size(); ++o)
     {
@@ -723,7 +730,17 @@ namespace coshell::driver
     out.curve.finish();
     out.history.finish();
     if (out.contact_forces)
+    {
       out.contact_forces->finish();
+      const auto &timing = contact->timing();
+      result.contact     = {{"smallest_gap", out.smallest_gap},
+                            {"largest_penetration", out.largest_penetration},
+                            {"barrier_stiffness", contact->barrier_stiffness()},
+                            {"activation_distance", contact->activation_distance()},
+                            {"detection_s", timing.detection},
+                            {"pair_terms_s", timing.pair_terms},
+                            {"collision_filter_s", timing.filter}};
+    }
     if (out.time_history)
       out.time_history->finish();
     if (!quantities_.reference_curves().empty())

@@ -50,6 +50,8 @@ namespace coshell::io
       json["real_time_factor"] =
           simulated_time_s / std::max(dynamic_wall_time_s, 1e-12);
     }
+    if (!contact.empty())
+      json["contact"] = Json::Object(contact.begin(), contact.end());
     Json::Object qoi_json(qoi.begin(), qoi.end());
     json["qoi"] = qoi_json;
     if (!reference.empty())

@@ -2,6 +2,7 @@
 
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -26,6 +27,17 @@ namespace coshell::model
     global_force_.reinit(model_.n_dofs());
     one_global_force_.reinit(model_.n_dofs());
     set_path_parameter(0);
+    // A force that strains an element by 1e-8: below it, forces are
+    // round-off. It keeps the convergence test meaningful while nothing is
+    // loaded yet (a shell at rest before an obstacle reaches it).
+    double longest_edge = 0;
+    for (const auto &cell : model_.surface().active_cell_iterators())
+      for (unsigned int i = 0; i < 3; ++i)
+        longest_edge = std::max(
+            longest_edge, cell->vertex(i).distance(cell->vertex((i + 1) % 3)));
+    const auto &material = model_.element_parameters().material;
+    force_floor_ =
+        1e-8 * material.youngs_modulus * material.thickness * longest_edge;
   }
 
   void ShellProblem::set_schedule(const Schedule &schedule)
@@ -200,7 +212,8 @@ namespace coshell::model
     // Forces that die out (a structure coming to rest) must not make
     // round-off look large: the scale keeps the largest force of the
     // converged states so far.
-    return std::max(current_force_scale(), converged_force_scale_);
+    return std::max(
+        {current_force_scale(), converged_force_scale_, force_floor_});
   }
 
   const Vector<double> &ShellProblem::force(ForceKind kind) const

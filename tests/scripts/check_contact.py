@@ -20,11 +20,15 @@ outputs) against references given here.
      [--change QOI T0 T1 MAX]  |QOI(T1) - QOI(T0)| <= MAX (rows nearest
                           those times): it stays put
      [--max-abs QOI LIMIT]  |QOI| stays below LIMIT over the run
+     [--force-range OBSTACLE COMPONENT LO HI]  the last step's force on
+                          obstacle OBSTACLE (1-based) lies in [LO, HI]
+     [--summary KEY LO HI]  summary.json's contact[KEY] lies in [LO, HI]
      [--report FILE]      append 'test,name,value' lines of what was measured
 Prints a line per check and 'N passed, M failed'; exits 1 on a failure.
 """
 import argparse
 import csv
+import json
 import math
 import os
 import sys
@@ -80,6 +84,8 @@ def main():
     parser.add_argument("--slope", nargs=5, action="append", default=[])
     parser.add_argument("--max-abs", nargs=2, action="append", default=[])
     parser.add_argument("--change", nargs=4, action="append", default=[])
+    parser.add_argument("--force-range", nargs=4, action="append", default=[])
+    parser.add_argument("--summary", nargs=3, action="append", default=[])
     parser.add_argument("--report")
     args = parser.parse_args()
 
@@ -151,6 +157,20 @@ def main():
         largest = max(abs(float(r[name])) for r in rows)
         measured.append((f"{name}_max_abs", largest))
         check(largest <= float(limit), f"max |{name}| = {largest:.6g} <= {limit}")
+    for obstacle, component, lo, hi in args.force_range:
+        value = sum(float(r[component]) for r in last
+                    if int(float(r["obstacle"])) == int(obstacle))
+        measured.append((f"obstacle_{obstacle}_{component}", value))
+        check(float(lo) <= value <= float(hi),
+              f"obstacle {obstacle} {component} = {value:.6g} in [{lo}, {hi}]")
+    if args.summary:
+        with open(os.path.join(args.output, "summary.json")) as f:
+            summary = json.load(f)
+        contact = summary.get("levels", [summary])[-1]["contact"]
+    for key, lo, hi in args.summary:
+        value = contact[key]
+        measured.append((key, value))
+        check(float(lo) <= value <= float(hi), f"{key} = {value:.6g} in [{lo}, {hi}]")
     if args.report:
         test = os.path.basename(os.path.normpath(args.output))
         with open(args.report, "a") as f:

@@ -40,6 +40,8 @@ namespace coshell::contact
     /// activation distance doubles the barrier stiffness (dimensionless).
     double stiffening_gap_ratio = 1e-3;
     bool   project_tangent      = true;
+    /// Keep only pairs whose distance is a local minimum over the surface.
+    bool local_minima_only = false;
     /// Friction: tangential speed below which friction is smoothed (the
     /// creep speed of sticking), length / s.
     double                stiction_velocity = 1e-3;
@@ -104,7 +106,14 @@ namespace coshell::contact
     /// Writes the obstacles at their current positions as one VTU file.
     void   write_obstacles_vtu(const std::string &file) const;
     double barrier_stiffness() const;
-    double activation_distance() const;
+    /// Wall-clock seconds so far: pair detection (and obstacle moves),
+    /// pair forces and stiffness, collision filter of the corrections.
+    struct Timing
+    {
+      double detection = 0, pair_terms = 0, filter = 0;
+    };
+    const Timing &timing() const;
+    double        activation_distance() const;
 
   private:
     /// A shell vertex against an obstacle triangle (shell_vertex_side), or
@@ -148,6 +157,7 @@ namespace coshell::contact
     std::vector<double>           vertex_gap_;
     dealii::Vector<double>        vertex_force_;
     double                        smallest_gap_ = 0, largest_penetration_ = 0;
+    mutable Timing                timing_;
     bool                          pending_ = false;
 
     double offset(unsigned int obstacle) const;
@@ -180,6 +190,13 @@ namespace coshell::contact
                         unsigned int                first,
                         unsigned int                last,
                         dealii::FullMatrix<double> &matrix) const;
+    void   anticipate_obstacle(const Pair              &pair,
+                               const SquaredDistance   &s,
+                               const Coordinates12     &dg,
+                               double                   distance,
+                               double                   weight,
+                               const ScalarDerivatives &phi,
+                               model::DofBlock         &block) const;
     void   record_pair(const Pair                            &pair,
                        const std::array<dealii::Point<3>, 4> &points,
                        const Coordinates12                   &gradient,

@@ -32,6 +32,10 @@ namespace coshell::io
     /// Of that wall time: residual/tangent assembly and linear solver.
     double dynamic_assembly_s = 0, dynamic_linear_solver_s = 0;
     std::map<std::string, double> qoi, reference;
+    /// Contact: smallest gap and largest penetration over the run (length),
+    /// barrier stiffness, and the seconds spent in detection, pair terms
+    /// and the collision filter.
+    std::map<std::string, double> contact;
 
     /// |qoi - reference| / |reference| for every quantity with a reference.
     std::map<std::string, double> relative_errors() const;

@@ -114,6 +114,7 @@ namespace coshell::model
     std::array<dealii::Vector<double>, n_force_kinds> forces_;
     bool                                              pending_ = false;
     double                 converged_force_scale_              = 0;
+    double                 force_floor_                        = 0;
     double                 assembly_seconds_                   = 0;
     PrescribedIncrements   increments_;
     dealii::Vector<double> global_force_, one_global_force_;
