@@ -2,9 +2,9 @@
 // section 5): the tangential relative displacement u of the pair's closest
 // points over the step, against the obstacle's, meets the force
 // F = -mu lambda f1(|u|) u / |u|, with f1(x) = 2x/eps - x^2/eps^2 below
-// eps = (stiction velocity) * (step duration) and 1 above. The normal
-// force lambda, the normal n and the closest point's weights are taken
-// from the same evaluation but held fixed in the tangent (lagged).
+// eps = (stiction velocity) * (step duration) and 1 above. The pairs, their
+// normal force lambda, normal n and closest point's weights are those of
+// the last converged state (lagged), fixed through the step.
 
 #include <coshell/contact/contact.h>
 
@@ -22,6 +22,33 @@ namespace coshell::contact
       if (x < eps)
         return {2 / eps - x / (eps * eps), -1 / (eps * eps)};
       return {1 / x, -1 / (x * x)};
+    }
+
+    /// K_ik = mu lambda w_i w_k M, M = (f1/x) P + (f1/x)' u u^T / x with
+    /// P the tangential projector: positive semi-definite for every x.
+    /// The shell's points are weights w[first .. first + n).
+    void add_friction_tangent(const std::array<double, 4>     &w,
+                              unsigned int                     first,
+                              unsigned int                     n,
+                              double                           mu_lambda,
+                              const std::pair<double, double> &ratio_slope,
+                              const Tensor<1, 3>              &u,
+                              const Tensor<1, 3>              &normal,
+                              FullMatrix<double>              &matrix)
+    {
+      const auto [ratio, slope] = ratio_slope;
+      const double x            = u.norm();
+      Tensor<2, 3> m;
+      for (unsigned int a = 0; a < 3; ++a)
+        for (unsigned int b = 0; b < 3; ++b)
+          m[a][b] = ratio * ((a == b) - normal[a] * normal[b]) +
+                    (x > 0 ? slope * u[a] * u[b] / x : 0.0);
+      for (unsigned int i = 0; i < n; ++i)
+        for (unsigned int k = 0; k < n; ++k)
+          for (unsigned int a = 0; a < 3; ++a)
+            for (unsigned int b = 0; b < 3; ++b)
+              matrix(3 * i + a, 3 * k + b) +=
+                  mu_lambda * w[first + i] * w[first + k] * m[a][b];
     }
   } // namespace
 
@@ -106,20 +133,8 @@ namespace coshell::contact
         at -= w[k] * points[k];
     }
     load.moment += cross_product_3d(at, on_obstacle);
-    if (!with_tangent)
-      return;
-    // K = mu lambda w_i w_k M, M = (f1/x) P + (f1/x)' u u^T / x: positive
-    // semi-definite for every x.
-    Tensor<2, 3> m;
-    for (unsigned int a = 0; a < 3; ++a)
-      for (unsigned int b = 0; b < 3; ++b)
-        m[a][b] = ratio * ((a == b) - normal[a] * normal[b]) +
-                  (x > 0 ? slope * u[a] * u[b] / x : 0.0);
-    for (unsigned int i = 0; i < n; ++i)
-      for (unsigned int k = 0; k < n; ++k)
-        for (unsigned int a = 0; a < 3; ++a)
-          for (unsigned int b = 0; b < 3; ++b)
-            block.matrix(3 * i + a, 3 * k + b) +=
-                mu * normal_force * w[first + i] * w[first + k] * m[a][b];
+    if (with_tangent)
+      add_friction_tangent(w, first, n, mu * normal_force, {ratio, slope}, u,
+                           normal, block.matrix);
   }
 } // namespace coshell::contact

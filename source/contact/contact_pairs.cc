@@ -67,7 +67,7 @@ namespace coshell::contact
     }
 
     /// Keeps a candidate only where its distance is a local minimum over
-    /// the surface: not if a feature it bounds is strictly closer (a
+    /// the surface: not if a feature it bounds is as close or closer (a
     /// vertex over the middle of a flat face is also within reach of the
     /// face's edges and of the neighbouring triangles' shared edge; only
     /// the face counts, so a frictionless plane pushes only along its
@@ -81,7 +81,7 @@ namespace coshell::contact
           const auto &a = candidates[i], &b = candidates[j];
           const auto &fa = a.shell_side_varies ? a.shell : a.obstacle;
           const auto &fb = b.shell_side_varies ? b.shell : b.obstacle;
-          if (proper_part(fa, fb) && b.distance < a.distance)
+          if (proper_part(fa, fb) && b.distance <= a.distance)
             keep[i] = false;
         }
       return keep;
@@ -90,85 +90,120 @@ namespace coshell::contact
 
   /// Pairs within reach, one per pair of closest features (and, with
   /// Pairs = local minima, only the local minima of the distance).
+  /// Gathers the candidates of one point (a shell vertex or an obstacle
+  /// vertex) and keeps one pair per pair of closest features (and, with
+  /// Pairs = local minima, only the local minima of the distance).
+  class Contact::PairSelector
+  {
+  public:
+    explicit PairSelector(Contact &contact) : contact_(contact) {}
+    void add(const Candidate &candidate, const Pair &pair)
+    {
+      candidates_.push_back(candidate);
+      found_.push_back(pair);
+    }
+    void settle()
+    {
+      const std::vector<bool> keep =
+          contact_.parameters_.local_minima_only
+              ? local_minima(candidates_)
+              : std::vector<bool>(candidates_.size(), true);
+      for (unsigned int k = 0; k < candidates_.size(); ++k)
+      {
+        const auto               &c   = candidates_[k];
+        const std::array<long, 7> key = {
+            found_[k].obstacle, c.shell[0],    c.shell[1],   c.shell[2],
+            c.obstacle[0],      c.obstacle[1], c.obstacle[2]};
+        if (!keep[k] || !seen_.insert(key).second)
+          continue;
+        contact_.pairs_.push_back(found_[k]);
+        const double gap = c.distance - contact_.offset(found_[k].obstacle);
+        contact_.smallest_gap_ = std::min(contact_.smallest_gap_, gap);
+        contact_.largest_penetration_ =
+            std::max(contact_.largest_penetration_, -gap);
+      }
+      candidates_.clear();
+      found_.clear();
+    }
+
+  private:
+    Contact                      &contact_;
+    std::set<std::array<long, 7>> seen_;
+    std::vector<Candidate>        candidates_;
+    std::vector<Pair>             found_;
+  };
+
   void Contact::find_pairs(const std::vector<Point<3>> &x)
   {
     pairs_.clear();
-    std::set<std::array<long, 7>> seen;
-    std::vector<Candidate>        candidates;
-    std::vector<Pair>             found;
-    const auto                    settle = [&]()
-    {
-      const std::vector<bool> keep =
-          parameters_.local_minima_only
-              ? local_minima(candidates)
-              : std::vector<bool>(candidates.size(), true);
-      for (unsigned int k = 0; k < candidates.size(); ++k)
-      {
-        const auto               &c   = candidates[k];
-        const std::array<long, 7> key = {
-            found[k].obstacle, c.shell[0],    c.shell[1],   c.shell[2],
-            c.obstacle[0],     c.obstacle[1], c.obstacle[2]};
-        if (!keep[k] || !seen.insert(key).second)
-          continue;
-        pairs_.push_back(found[k]);
-        const double gap     = c.distance - offset(found[k].obstacle);
-        smallest_gap_        = std::min(smallest_gap_, gap);
-        largest_penetration_ = std::max(largest_penetration_, -gap);
-      }
-      candidates.clear();
-      found.clear();
-    };
+    PairSelector   selector(*this);
     const Tree     shell_tree = shell_triangle_tree(x, nullptr, max_reach());
     BoundingBox<3> shell_box(x);
     shell_box.extend(max_reach());
-    Hits hits;
     for (unsigned int o = 0; o < current_.size(); ++o)
     {
-      const auto &X         = current_[o];
-      const auto &triangles = parameters_.obstacles[o].triangles;
-      for (const unsigned v : shell_vertices_)
+      find_shell_vertex_pairs(o, x, selector);
+      find_obstacle_vertex_pairs(o, x, shell_tree, shell_box, selector);
+    }
+  }
+
+  void Contact::find_shell_vertex_pairs(unsigned int                 o,
+                                        const std::vector<Point<3>> &x,
+                                        PairSelector                &selector)
+  {
+    const auto &X         = current_[o];
+    const auto &triangles = parameters_.obstacles[o].triangles;
+    Hits        hits;
+    for (const unsigned v : shell_vertices_)
+    {
+      hits.clear();
+      obstacle_trees_[o].query(bgi::intersects(BoundingBox<3>({x[v], x[v]})),
+                               std::back_inserter(hits));
+      for (const auto &hit : hits)
       {
-        hits.clear();
-        obstacle_trees_[o].query(bgi::intersects(BoundingBox<3>({x[v], x[v]})),
-                                 std::back_inserter(hits));
-        for (const auto &hit : hits)
-        {
-          const auto &t = triangles[hit.second];
-          const auto  d =
-              point_triangle_distance(x[v], X[t[0]], X[t[1]], X[t[2]], false);
-          if (std::sqrt(d.value) >= reach(o))
-            continue;
-          candidates.push_back({{-1, -1, long(v)},
-                                feature_vertices(t, d.feature),
-                                std::sqrt(d.value),
-                                false});
-          found.push_back({true, o, v, hit.second, shell_vertex_area_[v]});
-        }
-        settle();
+        const auto &t = triangles[hit.second];
+        const auto  d =
+            point_triangle_distance(x[v], X[t[0]], X[t[1]], X[t[2]], false);
+        if (std::sqrt(d.value) < reach(o))
+          selector.add({{-1, -1, long(v)},
+                        feature_vertices(t, d.feature),
+                        std::sqrt(d.value),
+                        false},
+                       {true, o, v, hit.second, shell_vertex_area_[v]});
       }
-      for (unsigned int j = 0; j < X.size(); ++j)
+      selector.settle();
+    }
+  }
+
+  void Contact::find_obstacle_vertex_pairs(unsigned int                 o,
+                                           const std::vector<Point<3>> &x,
+                                           const Tree           &shell_tree,
+                                           const BoundingBox<3> &shell_box,
+                                           PairSelector         &selector)
+  {
+    const auto &X = current_[o];
+    Hits        hits;
+    for (unsigned int j = 0; j < X.size(); ++j)
+    {
+      if (!shell_box.point_inside(X[j]))
+        continue;
+      hits.clear();
+      shell_tree.query(bgi::intersects(BoundingBox<3>({X[j], X[j]})),
+                       std::back_inserter(hits));
+      for (const auto &hit : hits)
       {
-        if (!shell_box.point_inside(X[j]))
-          continue;
-        hits.clear();
-        shell_tree.query(bgi::intersects(BoundingBox<3>({X[j], X[j]})),
-                         std::back_inserter(hits));
-        for (const auto &hit : hits)
-        {
-          const auto &t = shell_triangles_[hit.second];
-          const auto  d =
-              point_triangle_distance(X[j], x[t[0]], x[t[1]], x[t[2]], false);
-          if (std::sqrt(d.value) >= reach(o))
-            continue;
-          candidates.push_back({feature_vertices(t, d.feature),
-                                {-1, -1, long(j)},
-                                std::sqrt(d.value),
-                                true});
-          found.push_back(
+        const auto &t = shell_triangles_[hit.second];
+        const auto  d =
+            point_triangle_distance(X[j], x[t[0]], x[t[1]], x[t[2]], false);
+        if (std::sqrt(d.value) < reach(o))
+          selector.add(
+              {feature_vertices(t, d.feature),
+               {-1, -1, long(j)},
+               std::sqrt(d.value),
+               true},
               {false, o, hit.second, j, shell_triangle_area_[hit.second] / 3});
-        }
-        settle();
       }
+      selector.settle();
     }
   }
 

@@ -638,7 +638,7 @@ namespace coshell::driver
                    problem.time());
     };
     const auto on_iteration =
-        [&](unsigned int step, const solvers::NewtonIteration &record)
+        [&](unsigned int, const solvers::NewtonIteration &record)
     {
       out.history.row({double(out.step + 1), double(record.iteration),
                        problem.load_factor(), record.relative_residual,

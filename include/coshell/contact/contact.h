@@ -177,32 +177,41 @@ namespace coshell::contact
                 const std::vector<dealii::Point<3>> &shell,
                 const std::vector<dealii::Point<3>> &obstacle) const;
     /// Friction of the pairs in contact at the last converged state.
-    void   add_friction_terms(const model::BlockSink &sink, bool with_tangent);
-    void   add_friction(const NormalForce &lagged,
-                        bool               with_tangent,
-                        model::DofBlock   &block);
-    void   pair_dofs(const Pair &pair, model::DofBlock &block) const;
-    void   pair_hessian(const SquaredDistance      &s,
-                        const Coordinates12        &dg,
-                        double                      distance,
-                        double                      weight,
-                        const ScalarDerivatives    &phi,
-                        unsigned int                first,
-                        unsigned int                last,
-                        dealii::FullMatrix<double> &matrix) const;
-    void   anticipate_obstacle(const Pair              &pair,
-                               const SquaredDistance   &s,
-                               const Coordinates12     &dg,
-                               double                   distance,
-                               double                   weight,
-                               const ScalarDerivatives &phi,
-                               model::DofBlock         &block) const;
-    void   record_pair(const Pair                            &pair,
-                       const std::array<dealii::Point<3>, 4> &points,
-                       const Coordinates12                   &gradient,
-                       double                                 gap,
-                       const model::DofBlock                 &block);
+    void add_friction_terms(const model::BlockSink &sink, bool with_tangent);
+    void add_friction(const NormalForce &lagged,
+                      bool               with_tangent,
+                      model::DofBlock   &block);
+    void pair_dofs(const Pair &pair, model::DofBlock &block) const;
+    void pair_hessian(const SquaredDistance      &s,
+                      const Coordinates12        &dg,
+                      double                      distance,
+                      double                      weight,
+                      const ScalarDerivatives    &phi,
+                      unsigned int                first,
+                      unsigned int                last,
+                      dealii::FullMatrix<double> &matrix) const;
+    void anticipate_obstacle(const Pair              &pair,
+                             const SquaredDistance   &s,
+                             const Coordinates12     &dg,
+                             double                   distance,
+                             double                   weight,
+                             const ScalarDerivatives &phi,
+                             model::DofBlock         &block) const;
+    void record_pair(const Pair                            &pair,
+                     const std::array<dealii::Point<3>, 4> &points,
+                     const Coordinates12                   &gradient,
+                     double                                 gap,
+                     const model::DofBlock                 &block);
+    class PairSelector;
     void   find_pairs(const std::vector<dealii::Point<3>> &x);
+    void   find_shell_vertex_pairs(unsigned int                         obstacle,
+                                   const std::vector<dealii::Point<3>> &x,
+                                   PairSelector                        &selector);
+    void   find_obstacle_vertex_pairs(unsigned int obstacle,
+                                      const std::vector<dealii::Point<3>> &x,
+                                      const Tree                   &shell_tree,
+                                      const dealii::BoundingBox<3> &shell_box,
+                                      PairSelector                 &selector);
     double ccd_fraction(const std::vector<dealii::Point<3>>     &x,
                         const std::vector<dealii::Tensor<1, 3>> *dx,
                         unsigned int                             obstacle,
