@@ -184,9 +184,11 @@ namespace coshell::contact
   /// Largest fraction of the motion (shell by dx, obstacle by dX; either
   /// may be absent) that keeps every pair of this obstacle farther apart
   /// than its offset: additive CCD on the candidates whose swept boxes
-  /// meet.
+  /// meet. 'shell_tree' holds the shell triangles swept by dx, inflated
+  /// by at least this obstacle's offset.
   double Contact::ccd_fraction(const std::vector<Point<3>>     &x,
                                const std::vector<Tensor<1, 3>> *dx,
+                               const Tree                      &shell_tree,
                                unsigned int                     o,
                                const std::vector<Tensor<1, 3>> *dX) const
   {
@@ -228,7 +230,6 @@ namespace coshell::contact
                                             r));
       }
     }
-    const Tree shell_tree = shell_triangle_tree(x, dx, r);
     for (unsigned int j = 0; j < X.size(); ++j)
     {
       hits.clear();
@@ -260,15 +261,20 @@ namespace coshell::contact
     for (const unsigned v : shell_vertices_)
       for (unsigned int c = 0; c < 3; ++c)
         dx[v][c] = correction[model_.vertex_dofs(v)[c]];
-    double fraction = 1;
+    // One tree of the swept shell triangles for every obstacle; inflated
+    // by the largest reach, a superset of each obstacle's candidates.
+    const Tree shell_tree = shell_triangle_tree(x, &dx, max_reach());
+    double     fraction   = 1;
     for (unsigned int o = 0; o < current_.size(); ++o)
-      fraction = std::min(fraction, ccd_fraction(x, &dx, o, nullptr));
+      fraction =
+          std::min(fraction, ccd_fraction(x, &dx, shell_tree, o, nullptr));
     return fraction;
   }
 
   /// Moves each obstacle towards its position at the evaluation time, as
   /// far as the step filter allows against the shell as it is.
-  void Contact::advance_obstacles(const std::vector<Point<3>> &x)
+  void Contact::advance_obstacles(const std::vector<Point<3>> &x,
+                                  const Tree                  &shell_tree)
   {
     pending_ = false;
     for (unsigned int o = 0; o < current_.size(); ++o)
@@ -279,7 +285,7 @@ namespace coshell::contact
       for (unsigned int i = 0; i < dX.size(); ++i)
         dX[i] = target_[o][i] - current_[o][i];
       const double fraction = parameters_.method == Method::barrier
-                                  ? ccd_fraction(x, nullptr, o, &dX)
+                                  ? ccd_fraction(x, nullptr, shell_tree, o, &dX)
                                   : 1.0;
       if (fraction >= 1)
         current_[o] = target_[o];
@@ -319,8 +325,12 @@ namespace coshell::contact
     const Stopwatch watch(timing_.detection);
     set_target_time(time);
     positions_ = shell_positions(state);
-    advance_obstacles(positions_);
-    find_pairs(positions_);
+    // The shell does not move within prepare(): one tree serves the
+    // obstacles' step filter and the pair search.
+    const Tree shell_tree =
+        shell_triangle_tree(positions_, nullptr, max_reach());
+    advance_obstacles(positions_, shell_tree);
+    find_pairs(positions_, shell_tree);
   }
 
   void Contact::save()
@@ -358,7 +368,8 @@ namespace coshell::contact
     positions_       = shell_positions(state);
     saved_positions_ = positions_;
     saved_time_      = time;
-    find_pairs(positions_);
+    find_pairs(positions_,
+               shell_triangle_tree(positions_, nullptr, max_reach()));
     for (const Pair &pair : pairs_)
     {
       const auto   p = pair_points(pair, positions_, current_[pair.obstacle]);

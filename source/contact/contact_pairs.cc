@@ -133,11 +133,11 @@ namespace coshell::contact
     std::vector<Pair>             found_;
   };
 
-  void Contact::find_pairs(const std::vector<Point<3>> &x)
+  void Contact::find_pairs(const std::vector<Point<3>> &x,
+                           const Tree                  &shell_tree)
   {
     pairs_.clear();
     PairSelector   selector(*this);
-    const Tree     shell_tree = shell_triangle_tree(x, nullptr, max_reach());
     BoundingBox<3> shell_box(x);
     shell_box.extend(max_reach());
     for (unsigned int o = 0; o < current_.size(); ++o)

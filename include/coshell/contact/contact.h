@@ -203,7 +203,9 @@ namespace coshell::contact
                      double                                 gap,
                      const model::DofBlock                 &block);
     class PairSelector;
-    void   find_pairs(const std::vector<dealii::Point<3>> &x);
+    /// 'shell_tree': the shell triangles at x, inflated by max_reach().
+    void   find_pairs(const std::vector<dealii::Point<3>> &x,
+                      const Tree                          &shell_tree);
     void   find_shell_vertex_pairs(unsigned int                         obstacle,
                                    const std::vector<dealii::Point<3>> &x,
                                    PairSelector                        &selector);
@@ -214,9 +216,11 @@ namespace coshell::contact
                                       PairSelector                 &selector);
     double ccd_fraction(const std::vector<dealii::Point<3>>     &x,
                         const std::vector<dealii::Tensor<1, 3>> *dx,
+                        const Tree                              &shell_tree,
                         unsigned int                             obstacle,
                         const std::vector<dealii::Tensor<1, 3>> *dX) const;
-    void   advance_obstacles(const std::vector<dealii::Point<3>> &x);
+    void   advance_obstacles(const std::vector<dealii::Point<3>> &x,
+                             const Tree                          &shell_tree);
     void   set_target_time(double time);
   };
 
