@@ -9,7 +9,7 @@ coshell_bad_input_test(prm_is_directory "cannot read parameter file"
   ${data})
 coshell_bad_input_test(unknown_parameter "unknown_parameter.prm.*Line <3>.*Stifness"
   ${data}/unknown_parameter.prm)
-coshell_bad_input_test(ill_typed_value "ill_typed_value.prm.*Line <2>.*Thickness"
+coshell_bad_input_test(ill_typed_value "ill_typed_value.prm.*Line <2>.*Poisson"
   ${data}/ill_typed_value.prm)
 coshell_bad_input_test(unknown_set_parameter "--set 'Material/Stifness=1'.*Stifness"
   ${plate} --set "Material/Stifness=1")
@@ -25,6 +25,18 @@ coshell_bad_input_test(zero_thickness "Material: thickness h = 0 must be positiv
   ${plate} --set "Material/Thickness=0")
 coshell_bad_input_test(negative_thickness "Material: thickness h = -0.1 must be positive"
   ${plate} --set "Material/Thickness=-0.1")
+coshell_bad_input_test(unparsable_thickness "Material/Thickness: cannot parse 'thin' as 1 expression.s. of x, y, z, region"
+  ${plate} --set "Material/Thickness=thin")
+# The plate spans 0 <= x <= 10: the thickness turns negative past x = 5.
+coshell_bad_input_test(thickness_expression_negative "Material: at triangle [0-9]+ .centroid [5-9][.0-9]* .*region 0.: thickness h = -[0-9.e-]+ must be positive"
+  ${plate} --set "Material/Thickness=0.1 - x / 50")
+coshell_bad_input_test(density_expression_negative "Material: at triangle [0-9]+ .*region 0.: density = -"
+  ${plate} --set "Material/Density=if(x < 9, 1, -1)")
+coshell_bad_input_test(malformed_gmsh_parameter "Mesh/Gmsh parameters: 'haptic width = 1' is not of the form 'name = number'"
+  ${plate} --set "Mesh/Source=gmsh" --set "Mesh/Gmsh file=${CMAKE_SOURCE_DIR}/meshes/iol/lens.geo"
+  --set "Mesh/Gmsh parameters=haptic width = 1")
+coshell_bad_input_test(edge_force_unknown_boundary "Loads/Edge forces: boundary id 7, which the mesh does not have"
+  ${plate} --set "Loads/Edge forces=7: 1 0 0")
 coshell_bad_input_test(zero_youngs_modulus "Material: Young's modulus E = 0 must be positive"
   ${plate} --set "Material/Young's modulus=0")
 coshell_bad_input_test(poisson_ratio_too_large "Poisson's ratio = 0.5 is outside"

@@ -33,21 +33,25 @@ namespace coshell::contact
   Contact::Contact(const model::ShellModel &model,
                    const ContactParameters &parameters)
       : model_(model), parameters_(parameters),
-        thickness_(model.element_parameters().material.thickness)
+        largest_thickness_(model.thickness_range().second)
   {
-    const auto &material = model.element_parameters().material;
-    activation_          = parameters_.activation_distance > 0
-                               ? parameters_.activation_distance
-                               : 0.1 * thickness_;
-    kappa_               = parameters_.barrier_stiffness > 0
-                               ? parameters_.barrier_stiffness
-                               : material.youngs_modulus /
-                       (thickness_ *
-                        log_barrier(0.5 * activation_, activation_).second);
+    // Automatic scales: distances from the thinnest part of the shell,
+    // stiffnesses from the mean thickness (the two agree when uniform).
+    const auto  &material = model.element_parameters().material;
+    const double thinnest = model.thickness_range().first;
+    const double mean     = material.thickness;
+    activation_           = parameters_.activation_distance > 0
+                                ? parameters_.activation_distance
+                                : 0.1 * thinnest;
+    kappa_ =
+        parameters_.barrier_stiffness > 0
+            ? parameters_.barrier_stiffness
+            : material.youngs_modulus /
+                  (mean * log_barrier(0.5 * activation_, activation_).second);
     if (parameters_.penalty_stiffness <= 0)
-      parameters_.penalty_stiffness = material.youngs_modulus / thickness_;
+      parameters_.penalty_stiffness = material.youngs_modulus / mean;
     if (parameters_.penalty_smoothing <= 0)
-      parameters_.penalty_smoothing = 0.01 * thickness_;
+      parameters_.penalty_smoothing = 0.01 * thinnest;
 
     const auto &vertices = model.surface().get_vertices();
     shell_vertex_area_.assign(vertices.size(), 0);
@@ -60,6 +64,7 @@ namespace coshell::contact
                                  vertices[t[2]] - vertices[t[0]])
                     .norm();
       shell_triangles_.push_back(t);
+      shell_triangle_thickness_.push_back(model.material(cell).thickness);
       shell_triangle_area_.push_back(area);
       for (const unsigned v : t)
         shell_vertex_area_[v] += area / 3;
@@ -77,14 +82,29 @@ namespace coshell::contact
     smallest_gap_ = infinity;
   }
 
-  double Contact::offset(unsigned int obstacle) const
+  double Contact::offset(unsigned int obstacle,
+                         bool         shell_vertex_side,
+                         unsigned int shell) const
   {
-    return 0.5 * thickness_ + parameters_.obstacles[obstacle].offset;
+    const double thickness = shell_vertex_side
+                                 ? model_.vertex_thickness(shell)
+                                 : shell_triangle_thickness_[shell];
+    return 0.5 * thickness + parameters_.obstacles[obstacle].offset;
+  }
+
+  double Contact::offset(const Pair &pair) const
+  {
+    return offset(pair.obstacle, pair.shell_vertex_side, pair.shell);
+  }
+
+  double Contact::largest_offset(unsigned int obstacle) const
+  {
+    return 0.5 * largest_thickness_ + parameters_.obstacles[obstacle].offset;
   }
 
   double Contact::reach(unsigned int obstacle) const
   {
-    return offset(obstacle) +
+    return largest_offset(obstacle) +
            (parameters_.method == Method::barrier ? activation_ : 0.0);
   }
 
@@ -194,7 +214,7 @@ namespace coshell::contact
   {
     const auto  &X         = current_[o];
     const auto  &triangles = parameters_.obstacles[o].triangles;
-    const double r         = offset(o);
+    const double r         = largest_offset(o);
     const auto   along     = [](const std::vector<Tensor<1, 3>> *d, unsigned i)
     { return d ? (*d)[i] : Tensor<1, 3>(); };
     Tree swept_obstacle;
@@ -227,7 +247,7 @@ namespace coshell::contact
                                             {x[v], X[t[0]], X[t[1]], X[t[2]]},
                                             {along(dx, v), along(dX, t[0]),
                                              along(dX, t[1]), along(dX, t[2])},
-                                            r));
+                                            offset(o, true, v)));
       }
     }
     for (unsigned int j = 0; j < X.size(); ++j)
@@ -244,7 +264,7 @@ namespace coshell::contact
                                             {X[j], x[t[0]], x[t[1]], x[t[2]]},
                                             {along(dX, j), along(dx, t[0]),
                                              along(dx, t[1]), along(dx, t[2])},
-                                            r));
+                                            offset(o, false, hit.second)));
       }
     }
     return fraction;
@@ -375,7 +395,7 @@ namespace coshell::contact
       const auto   p = pair_points(pair, positions_, current_[pair.obstacle]);
       const double distance = std::sqrt(
           point_triangle_distance(p[0], p[1], p[2], p[3], false).value);
-      if (distance > offset(pair.obstacle))
+      if (distance > offset(pair))
         continue;
       const Obstacle    &obstacle = parameters_.obstacles[pair.obstacle];
       std::ostringstream message;
@@ -386,7 +406,7 @@ namespace coshell::contact
                       : "shell triangle " + std::to_string(pair.shell))
               << " at " << p[pair.shell_vertex_side ? 0 : 1]
               << " is at distance " << distance
-              << " from it, not more than the offset " << offset(pair.obstacle)
+              << " from it, not more than the offset " << offset(pair)
               << " (half the shell thickness plus the obstacle's Offset)";
       throw std::runtime_error(message.str());
     }

@@ -117,7 +117,7 @@ namespace coshell::contact
         if (!keep[k] || !seen_.insert(key).second)
           continue;
         contact_.pairs_.push_back(found_[k]);
-        const double gap = c.distance - contact_.offset(found_[k].obstacle);
+        const double gap       = c.distance - contact_.offset(found_[k]);
         contact_.smallest_gap_ = std::min(contact_.smallest_gap_, gap);
         contact_.largest_penetration_ =
             std::max(contact_.largest_penetration_, -gap);
@@ -301,7 +301,7 @@ namespace coshell::contact
       const auto   s = point_triangle_distance(points[0], points[1], points[2],
                                                points[3], true);
       const double distance = std::sqrt(s.value);
-      const double gap      = distance - offset(pair.obstacle);
+      const double gap      = distance - offset(pair);
       const bool   barrier  = parameters_.method == Method::barrier;
       const ScalarDerivatives phi =
           barrier ? log_barrier(gap, activation_)

@@ -123,19 +123,24 @@ namespace coshell::contact
 
   void read_triangle_surface(const std::string                    &file,
                              std::vector<Point<3>>                &vertices,
-                             std::vector<std::array<unsigned, 3>> &triangles)
+                             std::vector<std::array<unsigned, 3>> &triangles,
+                             const mesh::GmshConstants            &constants)
   {
     vertices.clear();
     triangles.clear();
     if (!std::filesystem::is_regular_file(file))
       throw std::runtime_error("mesh file '" + file + "' does not exist");
     const auto extension = std::filesystem::path(file).extension().string();
+    if ((extension == ".stl" || extension == ".STL") && !constants.empty())
+      throw std::runtime_error("mesh file '" + file +
+                               "' is an STL file; it takes no gmsh "
+                               "parameters");
     if (extension == ".stl" || extension == ".STL")
       read_stl(file, vertices, triangles);
     else
     {
       mesh::Surface surface;
-      mesh::read_gmsh(surface, file, 0);
+      mesh::read_gmsh(surface, file, 0, constants);
       vertices = surface.get_vertices();
       for (const auto &cell : surface.active_cell_iterators())
       {
@@ -191,7 +196,9 @@ namespace coshell::contact
     {
       Obstacle obstacle;
       obstacle.name = Utilities::trim(prm.get("Name"));
-      read_triangle_surface(file, obstacle.vertices, obstacle.triangles);
+      read_triangle_surface(file, obstacle.vertices, obstacle.triangles,
+                            mesh::parse_gmsh_constants(
+                                prm.get("Gmsh parameters"), "Gmsh parameters"));
       obstacle.vertex_area = vertex_areas(obstacle);
       obstacle.motion.parse_entries(prm, where);
       obstacle.friction_coefficient = prm.get_double("Friction coefficient");
@@ -217,6 +224,10 @@ namespace coshell::contact
                         "(every physical surface) or an STL file, "
                         "coordinates in length units; relative paths are "
                         "looked up beside the prm file. Empty: no obstacle.");
+      prm.declare_entry("Gmsh parameters", "", Patterns::Anything(),
+                        "Constants set when a .geo Mesh file is meshed, as "
+                        "'name = value' entries separated by ',' (see "
+                        "Mesh/Gmsh parameters).");
       prm.declare_entry("Name", "obstacle " + std::to_string(k),
                         Patterns::Anything(),
                         "Name in messages and in contact_forces.csv.");

@@ -197,7 +197,8 @@ namespace coshell::driver
     mesh::Surface surface;
     mesh_.build(surface, level);
     model::ShellModel model(surface, element_, mesh_.normal_reference);
-    const double      setup = seconds_since(start);
+    require_mass(model.element_parameters().material.density);
+    const double setup = seconds_since(start);
     log << "level " << level << ": " << surface.n_active_cells() << " cells, "
         << model.n_dofs() << " dofs, " << element_.formulation_name()
         << " formulation\n";
@@ -310,13 +311,20 @@ namespace coshell::driver
     return false;
   }
 
-  void Scene::check_analysis_choice() const
+  void Scene::require_mass(double mean_density) const
   {
     if ((has_dynamic_stage() || analysis_type_ == "modes") &&
-        !(element_.material.density > 0))
+        !(mean_density > 0))
       throw std::invalid_argument(
           "dynamics and modes need mass: Material/Density must be "
           "positive");
+  }
+
+  void Scene::check_analysis_choice() const
+  {
+    // A density expression is checked once the mesh is there.
+    if (element_.uniform_properties())
+      require_mass(element_.material.density);
     if ((analysis_type_ == "linear static" || analysis_type_ == "modes") &&
         (stages_.staged() || !motions_.empty()))
       throw std::invalid_argument(

@@ -116,9 +116,15 @@ namespace coshell::io
     add_tensor_fields(data_out, membrane, "N", storage);
     add_tensor_fields(data_out, bending, "M", storage);
     Vector<double> material(model.surface().n_active_cells());
-    for (const auto &cell : model.surface().active_cell_iterators())
-      material[cell->active_cell_index()] = cell->material_id();
+    Vector<double> thickness(material.size());
+    for (const auto &cell : model.dof_handler().active_cell_iterators())
+    {
+      material[cell->active_cell_index()]  = cell->material_id();
+      thickness[cell->active_cell_index()] = model.material(cell).thickness;
+    }
     data_out.add_data_vector(material, "material_id",
+                             DataOut<2, 3>::type_cell_data);
+    data_out.add_data_vector(thickness, "thickness",
                              DataOut<2, 3>::type_cell_data);
 
     const MappingFE<2, 3> mapping(FE_SimplexP<2, 3>(1));

@@ -1,13 +1,18 @@
+#include <coshell/io/expressions.h>
 #include <coshell/mesh/mesh.h>
 
 #include <deal.II/base/utilities.h>
 #include <deal.II/grid/grid_in.h>
 #include <deal.II/grid/tria_description.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -127,7 +132,9 @@ namespace coshell::mesh
 
   namespace
   {
-    std::string mesh_geo_file(const std::string &geo_file, unsigned int level)
+    std::string mesh_geo_file(const std::string   &geo_file,
+                              unsigned int         level,
+                              const GmshConstants &constants)
     {
       static unsigned int geo_meshes_made = 0;
       const auto          output =
@@ -137,7 +144,11 @@ namespace coshell::mesh
            std::filesystem::path(geo_file).stem().string() + ".msh");
       std::ostringstream command;
       command << "gmsh -2 -format msh2 -v 1 -setnumber refinement_level "
-              << level << " -o '" << output.string() << "' '" << geo_file
+              << level;
+      for (const auto &[name, value] : constants)
+        command << " -setnumber " << name << ' ' << std::setprecision(17)
+                << value;
+      command << " -o '" << output.string() << "' '" << geo_file
               << "' > /dev/null 2>&1";
       if (std::system(command.str().c_str()) != 0 ||
           !std::filesystem::exists(output))
@@ -169,14 +180,39 @@ namespace coshell::mesh
     }
   } // namespace
 
-  void read_gmsh(Surface &surface, const std::string &file, unsigned int level)
+  GmshConstants parse_gmsh_constants(const std::string &text,
+                                     const std::string &where)
+  {
+    GmshConstants constants;
+    for (const auto &entry : Utilities::split_string_list(text, ','))
+    {
+      const auto parts = Utilities::split_string_list(entry, '=');
+      const auto name  = parts.empty() ? std::string() : parts[0];
+      const bool named =
+          !name.empty() && !std::isdigit(name[0]) &&
+          std::all_of(name.begin(), name.end(),
+                      [](char c) { return std::isalnum(c) || c == '_'; });
+      const auto value =
+          parts.size() == 2 ? io::as_number(parts[1]) : std::optional<double>();
+      if (!named || !value)
+        throw std::invalid_argument(where + ": '" + entry +
+                                    "' is not of the form 'name = number'");
+      constants.emplace_back(name, *value);
+    }
+    return constants;
+  }
+
+  void read_gmsh(Surface             &surface,
+                 const std::string   &file,
+                 unsigned int         level,
+                 const GmshConstants &constants)
   {
     if (!std::filesystem::exists(file))
       throw std::runtime_error("mesh file '" + file + "' does not exist");
     surface.clear();
     if (std::filesystem::path(file).extension() == ".geo")
     {
-      const std::string msh = mesh_geo_file(file, level);
+      const std::string msh = mesh_geo_file(file, level, constants);
       try
       {
         read_msh_file(surface, msh);
@@ -188,6 +224,10 @@ namespace coshell::mesh
       }
       std::filesystem::remove(msh);
     }
+    else if (!constants.empty())
+      throw std::runtime_error("mesh file '" + file +
+                               "' is not a .geo file; it takes no gmsh "
+                               "parameters");
     else
       read_msh_file(surface, file);
   }

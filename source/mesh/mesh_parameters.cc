@@ -27,6 +27,12 @@ namespace coshell::mesh
                       "directory of the parameter file. Coordinates in the "
                       "file are in the length unit of the scene (m, mm, "
                       "...).");
+    prm.declare_entry("Gmsh parameters", "", Patterns::Anything(),
+                      "Constants set when a .geo Gmsh file is meshed, as "
+                      "'name = value' entries separated by ',' (gmsh "
+                      "-setnumber), overriding the file's DefineConstant "
+                      "defaults, e.g. 'haptic_width = 0.5'; units as the "
+                      ".geo file documents them.");
     prm.declare_entry("Triangle pattern", "crossed",
                       Patterns::Selection("same-diagonal|alternating|crossed"),
                       "Selects how a generated rectangle splits each "
@@ -76,6 +82,8 @@ namespace coshell::mesh
     prm.enter_subsection("Mesh");
     source         = prm.get("Source");
     gmsh_file      = resolve_path(prm.get("Gmsh file"), prm_directory);
+    gmsh_constants = parse_gmsh_constants(prm.get("Gmsh parameters"),
+                                          "Mesh/Gmsh parameters");
     pattern        = parse_triangle_pattern(prm.get("Triangle pattern"));
     length_x       = prm.get_double("Length x");
     length_y       = prm.get_double("Length y");
@@ -103,10 +111,10 @@ namespace coshell::mesh
       make_rectangle(surface, length_x, length_y, subdivisions_x * factor,
                      subdivisions_y * factor, pattern);
     else if (std::filesystem::path(gmsh_file).extension() == ".geo")
-      read_gmsh(surface, gmsh_file, level);
+      read_gmsh(surface, gmsh_file, level, gmsh_constants);
     else
     {
-      read_gmsh(surface, gmsh_file, 0);
+      read_gmsh(surface, gmsh_file, 0, gmsh_constants);
       surface.refine_global(level);
     }
     check_cells(surface);

@@ -1,5 +1,9 @@
+#include <coshell/io/expressions.h>
 #include <coshell/model/element_parameters.h>
 
+#include <deal.II/base/utilities.h>
+
+#include <cstdlib>
 #include <stdexcept>
 
 namespace coshell::model
@@ -14,13 +18,19 @@ namespace coshell::model
                       "MPa = N/mm^2 in mm-N-s-tonne scenes); > 0.");
     prm.declare_entry("Poisson's ratio", "0.3", Patterns::Double(),
                       "Poisson's ratio nu (dimensionless), in (-1, 0.5).");
-    prm.declare_entry("Thickness", "0.01", Patterns::Double(),
-                      "Shell thickness h, in length units of the scene (m, "
-                      "mm, ...); > 0.");
-    prm.declare_entry("Density", "0", Patterns::Double(),
-                      "Mass per unit volume, >= 0 (kg/m^3 in SI, or "
-                      "tonne/mm^3 in mm-N-s-tonne scenes: steel 7850 kg/m^3 "
-                      "= 7.85e-9 t/mm^3); used by gravity loads.");
+    prm.declare_entry(
+        "Thickness", "0.01", Patterns::Anything(),
+        "Shell thickness h, in length units of the scene (m, mm, ...); > 0. "
+        "A number, or a muparser expression of x, y, z (the reference "
+        "centroid of each triangle) and region (its material id, the gmsh "
+        "physical surface), constant over each triangle, e.g. "
+        "if(region == 1, 0.8 - 0.5 * (x^2 + y^2) / 9, 0.45).");
+    prm.declare_entry(
+        "Density", "0", Patterns::Anything(),
+        "Mass per unit volume, >= 0 (kg/m^3 in SI, or tonne/mm^3 in "
+        "mm-N-s-tonne scenes: steel 7850 kg/m^3 = 7.85e-9 t/mm^3); used by "
+        "gravity loads and inertia. A number, or an expression of x, y, z "
+        "and region as for Thickness.");
     prm.leave_subsection();
 
     prm.enter_subsection("Element");
@@ -52,14 +62,25 @@ namespace coshell::model
     prm.leave_subsection();
   }
 
+  bool ElementParameters::uniform_properties() const
+  {
+    return thickness_expression.empty() && density_expression.empty();
+  }
+
   void ElementParameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Material");
     material.youngs_modulus = prm.get_double("Young's modulus");
     material.poisson_ratio  = prm.get_double("Poisson's ratio");
-    material.thickness      = prm.get_double("Thickness");
-    material.density        = prm.get_double("Density");
+    // Expressions are evaluated and checked per triangle by ShellModel;
+    // stand-in values let E and nu be checked here already.
+    const std::string thickness = prm.get("Thickness");
+    const std::string density   = prm.get("Density");
     prm.leave_subsection();
+    material.thickness   = io::as_number(thickness).value_or(1.0);
+    material.density     = io::as_number(density).value_or(0.0);
+    thickness_expression = io::as_number(thickness) ? "" : thickness;
+    density_expression   = io::as_number(density) ? "" : density;
     try
     {
       material.validate();

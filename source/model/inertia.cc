@@ -108,9 +108,14 @@ namespace coshell::model
   Inertia::Inertia(const ShellModel &model, const InertiaParameters &parameters)
       : model_(model), parameters_(parameters)
   {
-    const auto &material = model.element_parameters().material;
-    mass_                = {material.density, material.thickness,
-                            parameters.rotary_inertia_factor, parameters.mass_matrix};
+  }
+
+  element::MassProperties
+  Inertia::mass_properties(const CellIterator &cell) const
+  {
+    const auto &material = model_.material(cell);
+    return {material.density, material.thickness,
+            parameters_.rotary_inertia_factor, parameters_.mass_matrix};
   }
 
   std::string Inertia::name() const
@@ -158,7 +163,8 @@ namespace coshell::model
     return spatial;
   }
 
-  FullMatrix<double> Inertia::damping(const element::SpatialTriangle &current,
+  FullMatrix<double> Inertia::damping(const CellIterator             &cell,
+                                      const element::SpatialTriangle &current,
                                       const FullMatrix<double> &mass) const
   {
     FullMatrix<double> c(element::shell_dofs, element::shell_dofs);
@@ -166,10 +172,9 @@ namespace coshell::model
       c.add(parameters_.rayleigh_alpha, mass);
     if (parameters_.rayleigh_beta > 0)
     {
-      const auto &element = model_.element_parameters();
-      c.add(
-          parameters_.rayleigh_beta,
-          element::shell_stiffness(current, element.material, element.options));
+      c.add(parameters_.rayleigh_beta,
+            element::shell_stiffness(current, model_.material(cell),
+                                     model_.element_parameters().options));
     }
     if (parameters_.normal_drag > 0 || parameters_.tangential_drag > 0)
     {
@@ -189,7 +194,7 @@ namespace coshell::model
   {
     const ShellState        &state = point.state;
     const FullMatrix<double> mass =
-        element::shell_mass(model_.triangle(cell), mass_);
+        element::shell_mass(model_.triangle(cell), mass_properties(cell));
     const auto acceleration = spatial_rates(cell, state, state.acceleration());
     for (unsigned int i = 0; i < element::shell_dofs; ++i)
       for (unsigned int j = 0; j < element::shell_dofs; ++j)
@@ -199,7 +204,7 @@ namespace coshell::model
     if (!parameters_.damped())
       return;
     const FullMatrix<double> c =
-        damping(current_triangle(model_, cell, state), mass);
+        damping(cell, current_triangle(model_, cell, state), mass);
     const auto velocity = spatial_rates(cell, state, state.velocity());
     for (unsigned int i = 0; i < element::shell_dofs; ++i)
       for (unsigned int j = 0; j < element::shell_dofs; ++j)
@@ -217,7 +222,7 @@ namespace coshell::model
     for (const auto &cell : model_.dof_handler().active_cell_iterators())
     {
       const FullMatrix<double> mass =
-          element::shell_mass(model_.triangle(cell), mass_);
+          element::shell_mass(model_.triangle(cell), mass_properties(cell));
       const auto velocity = spatial_rates(cell, state, state.velocity());
       const auto current  = current_triangle(model_, cell, state);
       std::array<double, element::shell_dofs> momentum{};
@@ -240,7 +245,7 @@ namespace coshell::model
         result.kinetic_energy += 0.5 * velocity[i] * momentum[i];
       if (parameters_.damped() && damping_force)
       {
-        const FullMatrix<double> c = damping(current, mass);
+        const FullMatrix<double> c = damping(cell, current, mass);
         for (unsigned int i = 0; i < element::shell_dofs; ++i)
           for (unsigned int j = 0; j < element::shell_dofs; ++j)
             (*damping_force)[cell->vertex_dof_index(i / 6, i % 6)] +=

@@ -25,7 +25,7 @@ namespace coshell::model
     const auto &parameters = model.element_parameters();
     corotational_.reserve(model.surface().n_active_cells());
     for (const auto &cell : model.dof_handler().active_cell_iterators())
-      corotational_.emplace_back(model.triangle(cell), parameters.material,
+      corotational_.emplace_back(model.triangle(cell), model.material(cell),
                                  parameters.options);
   }
 
@@ -68,7 +68,7 @@ namespace coshell::model
     {
       const auto              &parameters = model_.element_parameters();
       const FullMatrix<double> stiffness  = element::shell_stiffness(
-           model_.triangle(cell), parameters.material, parameters.options);
+           model_.triangle(cell), model_.material(cell), parameters.options);
       const auto u = model_.cell_values(cell, point.state.values());
       for (unsigned int i = 0; i < element::shell_dofs; ++i)
         for (unsigned int j = 0; j < element::shell_dofs; ++j)

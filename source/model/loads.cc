@@ -37,7 +37,67 @@ namespace coshell::model
       log << "  point load at (" << load.where << ") applied at vertex " << v
           << " (" << model.surface().get_vertices()[v] << ")\n";
     }
+
+    /// Each boundary edge with the load's id takes the share of the total
+    /// given by its length, half to each of its vertices: the consistent
+    /// load of a uniform line force on linear edges.
+    void add_on_edges(const ShellModel &model,
+                      const EdgeLoad   &load,
+                      Vector<double>   &rhs,
+                      std::ostream     &log)
+    {
+      std::vector<std::pair<double, std::array<unsigned int, 2>>> edges;
+      double                                                      length = 0;
+      for (const auto &cell : model.dof_handler().active_cell_iterators())
+        for (const unsigned int f : cell->face_indices())
+          if (cell->face(f)->at_boundary() &&
+              cell->face(f)->boundary_id() == load.boundary)
+          {
+            const auto edge = cell->face(f);
+            edges.push_back({edge->measure(),
+                             {edge->vertex_index(0), edge->vertex_index(1)}});
+            length += edges.back().first;
+          }
+      if (edges.empty())
+        throw std::invalid_argument("Loads/Edge forces: boundary id " +
+                                    std::to_string(load.boundary) +
+                                    ", which the mesh does not have");
+      for (const auto &[edge_length, vertices] : edges)
+        for (const unsigned int v : vertices)
+          for (unsigned int d = 0; d < 3; ++d)
+            rhs[model.vertex_dofs(v)[ux + d]] +=
+                0.5 * edge_length / length * load.total[d];
+      log << "  edge force on boundary " << load.boundary << ": "
+          << edges.size() << " edges, length " << length << "\n";
+    }
   } // namespace
+
+  std::vector<EdgeLoad> parse_edge_loads(const std::string &text)
+  {
+    std::vector<EdgeLoad> loads;
+    for (const auto &entry : Utilities::split_string_list(text, ';'))
+    {
+      const auto parts = Utilities::split_string_list(entry, ':');
+      try
+      {
+        if (parts.size() != 2)
+          throw std::invalid_argument("is not of the form 'id : fx fy fz'");
+        const int  id    = Utilities::string_to_int(parts[0]);
+        const auto value = parse_three_numbers(parts[1]);
+        if (id < 0 ||
+            types::boundary_id(id) == numbers::internal_face_boundary_id)
+          throw std::invalid_argument("has no valid boundary id");
+        loads.push_back({types::boundary_id(id),
+                         Tensor<1, 3>({value[0], value[1], value[2]})});
+      }
+      catch (const std::exception &error)
+      {
+        throw std::invalid_argument("edge force '" + entry +
+                                    "': " + error.what());
+      }
+    }
+    return loads;
+  }
 
   std::vector<PointLoad> parse_point_loads(const std::string &text)
   {
@@ -95,6 +155,12 @@ namespace coshell::model
                       "in length units of the scene (m, mm, ...), mx my mz "
                       "force*length (N m, or N mm in mm-N-s-tonne "
                       "scenes).");
+    prm.declare_entry("Edge forces", "", Patterns::Anything(),
+                      "Forces spread uniformly along the boundary edges of "
+                      "one boundary id (a gmsh physical curve), as "
+                      "'id : fx fy fz' entries separated by ';'; fx fy fz "
+                      "is the resultant in force units (N), each edge "
+                      "taking its share by length.");
     prm.declare_entry("Load factor", "1", Patterns::Double(),
                       "Multiplies every load above (dimensionless).");
     prm.leave_subsection();
@@ -112,6 +178,7 @@ namespace coshell::model
     {
       point_forces  = parse_point_loads(prm.get("Point forces"));
       point_moments = parse_point_loads(prm.get("Point moments"));
+      edge_forces   = parse_edge_loads(prm.get("Edge forces"));
     }
     catch (const std::invalid_argument &error)
     {
@@ -125,10 +192,10 @@ namespace coshell::model
                               double            dead_pressure,
                               Vector<double>   &rhs) const
   {
-    const auto  &material   = model.element_parameters().material;
-    const double areal_mass = material.density * material.thickness;
     for (const auto &cell : model.dof_handler().active_cell_iterators())
     {
+      const auto        &material   = model.material(cell);
+      const double       areal_mass = material.density * material.thickness;
       const Tensor<1, 3> force_per_area =
           dead_pressure * model.unit_normal(cell) + areal_mass * gravity;
       const Tensor<1, 3> vertex_force =
@@ -158,6 +225,8 @@ namespace coshell::model
       add_at_vertex(model, force, ux, load, log);
     for (const auto &moment : point_moments)
       add_at_vertex(model, moment, rx, load, log);
+    for (const auto &force : edge_forces)
+      add_on_edges(model, force, load, log);
     rhs.add(scale, load);
   }
 } // namespace coshell::model

@@ -1,3 +1,4 @@
+#include <coshell/io/expressions.h>
 #include <coshell/model/cell_loop.h>
 #include <coshell/model/shell_model.h>
 
@@ -15,9 +16,17 @@ namespace coshell::model
 
   namespace
   {
+    Point<3> centroid(const element::SpatialTriangle &corners)
+    {
+      Point<3> sum;
+      for (const auto &corner : corners)
+        sum += corner;
+      return sum / 3.0;
+    }
+
     const std::array<std::string, dofs_per_vertex> component_names = {
         {"ux", "uy", "uz", "rx", "ry", "rz"}};
-  }
+  } // namespace
 
   Component parse_component(const std::string &name)
   {
@@ -48,6 +57,98 @@ namespace coshell::model
         throw std::logic_error("unexpected cell-local DoF order in FESystem");
     dof_handler_.distribute_dofs(fe_);
     number_vertex_dofs();
+    assign_cell_materials();
+  }
+
+  std::vector<double> ShellModel::cell_values_of(const std::string &text,
+                                                 const std::string &name,
+                                                 double uniform) const
+  {
+    if (text.empty())
+      return std::vector<double>(surface_.n_active_cells(), uniform);
+    // "region" is the parser's time variable, set to the material id.
+    const auto function = io::parse_expressions<3>(
+        text, 1, "x,y,z,region", true, "x, y, z, region", "Material/" + name);
+    std::vector<double> values(surface_.n_active_cells());
+    for (const auto &cell : dof_handler_.active_cell_iterators())
+    {
+      function->set_time(cell->material_id());
+      values[cell->active_cell_index()] =
+          function->value(centroid(triangle(cell)));
+    }
+    return values;
+  }
+
+  void ShellModel::assign_cell_materials()
+  {
+    const auto thickness =
+        cell_values_of(element_.thickness_expression, "Thickness",
+                       element_.material.thickness);
+    const auto density = cell_values_of(element_.density_expression, "Density",
+                                        element_.material.density);
+    cell_materials_.assign(surface_.n_active_cells(), element_.material);
+    vertex_thickness_.assign(surface_.n_vertices(), 0);
+    std::vector<double> vertex_area(surface_.n_vertices(), 0);
+    double              area = 0, thickness_sum = 0, density_sum = 0;
+    for (const auto &cell : dof_handler_.active_cell_iterators())
+    {
+      const unsigned int index    = cell->active_cell_index();
+      auto              &material = cell_materials_[index];
+      material.thickness          = thickness[index];
+      material.density            = density[index];
+      const auto corners          = triangle(cell);
+      try
+      {
+        material.validate();
+      }
+      catch (const std::invalid_argument &error)
+      {
+        std::ostringstream where;
+        where << "Material: at triangle " << index << " (centroid "
+              << centroid(corners) << ", region " << int(cell->material_id())
+              << "): ";
+        throw std::invalid_argument(where.str() + error.what());
+      }
+      const double a = element::area(corners);
+      area += a;
+      thickness_sum += a * material.thickness;
+      density_sum += a * material.density;
+      for (unsigned int v = 0; v < 3; ++v)
+      {
+        vertex_thickness_[cell->vertex_index(v)] += a * material.thickness;
+        vertex_area[cell->vertex_index(v)] += a;
+      }
+    }
+    for (unsigned int v = 0; v < vertex_area.size(); ++v)
+      if (vertex_area[v] > 0)
+        vertex_thickness_[v] /= vertex_area[v];
+    if (!element_.uniform_properties())
+    {
+      element_.material.thickness = thickness_sum / area;
+      element_.material.density   = density_sum / area;
+    }
+  }
+
+  const element::ShellMaterial &
+  ShellModel::material(const CellIterator &cell) const
+  {
+    return cell_materials_[cell->active_cell_index()];
+  }
+
+  double ShellModel::vertex_thickness(unsigned int v) const
+  {
+    return vertex_thickness_[v];
+  }
+
+  std::pair<double, double> ShellModel::thickness_range() const
+  {
+    std::pair<double, double> range{std::numeric_limits<double>::max(), 0};
+    for (const auto &material : cell_materials_)
+    {
+      range.first  = std::min(range.first, material.thickness);
+      range.second = std::max(range.second, material.thickness);
+    }
+    return range;
   }
 
   void ShellModel::number_vertex_dofs()
@@ -153,7 +254,7 @@ namespace coshell::model
         [this](const CellIterator &cell, CellContribution &contribution)
         {
           contribution.matrix = element::shell_stiffness(
-              triangle(cell), element_.material, element_.options);
+              triangle(cell), material(cell), element_.options);
         },
         [&](const CellContribution &contribution)
         {
@@ -181,7 +282,7 @@ namespace coshell::model
     for (const auto &cell : dof_handler_.active_cell_iterators())
     {
       auto &r = result[cell->active_cell_index()];
-      r       = element::shell_resultants(triangle(cell), element_.material,
+      r       = element::shell_resultants(triangle(cell), material(cell),
                                           element_.options,
                                           cell_values(cell, solution));
       orient_moments(cell, r);

@@ -27,3 +27,12 @@ def add_scene_arguments(parser):
     parser.add_argument("--prm", required=True)
     parser.add_argument("--output", required=True)
     parser.add_argument("--set", action="append", default=[])
+
+
+def exit_with(failures):
+    """Prints the verdict and the failures (one line each) and exits with
+    the test's status."""
+    print(f"{1 - bool(failures)} passed, {int(bool(failures))} failed")
+    for failure in failures:
+        print("FAIL: " + failure)
+    sys.exit(1 if failures else 0)

@@ -138,9 +138,11 @@ namespace coshell::contact
     std::vector<NormalForce> lagged_normal_forces_;
     using Tree = dealii::RTree<std::pair<dealii::BoundingBox<3>, unsigned>>;
 
-    const model::ShellModel                   &model_;
-    ContactParameters                          parameters_;
-    double                                     thickness_ = 0;
+    const model::ShellModel &model_;
+    ContactParameters        parameters_;
+    /// Cell thickness of each shell triangle, and the largest one.
+    std::vector<double>                        shell_triangle_thickness_;
+    double                                     largest_thickness_ = 0;
     double                                     kappa_ = 0, activation_ = 0;
     std::vector<unsigned int>                  shell_vertices_; ///< used
     std::vector<double>                        shell_vertex_area_;
@@ -160,7 +162,14 @@ namespace coshell::contact
     mutable Timing                timing_;
     bool                          pending_ = false;
 
-    double offset(unsigned int obstacle) const;
+    /// Half the thickness of the pair's shell vertex or triangle plus the
+    /// obstacle's offset: the distance the pair must keep.
+    double offset(const Pair &pair) const;
+    double offset(unsigned int obstacle,
+                  bool         shell_vertex_side,
+                  unsigned int shell) const;
+    /// The largest offset of any pair of this obstacle.
+    double largest_offset(unsigned int obstacle) const;
     double reach(unsigned int obstacle) const;
     std::vector<dealii::Point<3>>
            shell_positions(const model::ShellState &state) const;

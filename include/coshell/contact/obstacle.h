@@ -1,5 +1,6 @@
 #pragma once
 
+#include <coshell/mesh/mesh.h>
 #include <coshell/model/rigid_motion.h>
 
 #include <deal.II/base/parameter_handler.h>
@@ -49,5 +50,6 @@ namespace coshell::contact
   /// merged). Throws std::runtime_error naming the file.
   void read_triangle_surface(const std::string                    &file,
                              std::vector<dealii::Point<3>>        &vertices,
-                             std::vector<std::array<unsigned, 3>> &triangles);
+                             std::vector<std::array<unsigned, 3>> &triangles,
+                             const mesh::GmshConstants &constants = {});
 } // namespace coshell::contact

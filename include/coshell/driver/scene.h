@@ -122,5 +122,7 @@ namespace coshell::driver
                                                       std::ostream &);
     static const std::map<std::string, AnalysisRunner> &analyses();
     void check_analysis_choice() const;
+    /// Throws if a dynamic stage or modal analysis has no mass.
+    void require_mass(double mean_density) const;
   };
 } // namespace coshell::driver

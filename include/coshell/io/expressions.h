@@ -6,12 +6,26 @@
 #include <deal.II/base/utilities.h>
 #include <deal.II/lac/vector.h>
 
+#include <cstdlib>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
 namespace coshell::io
 {
+  /// The value of 'text' if it is exactly one number (blanks around it
+  /// allowed), else nothing.
+  inline std::optional<double> as_number(const std::string &text)
+  {
+    const std::string trimmed = dealii::Utilities::trim(text);
+    char             *end     = nullptr;
+    const double      value   = std::strtod(trimmed.c_str(), &end);
+    if (trimmed.empty() || end != trimmed.c_str() + trimmed.size())
+      return std::nullopt;
+    return value;
+  }
+
   /// A muparser function with 'n_components' expressions separated by ';'
   /// in 'text', of the variables 'variables' (deal.II names, e.g. "x,y,z",
   /// or "x,t" with 'time_dependent'), with pi defined. Evaluated once here,

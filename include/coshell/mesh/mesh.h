@@ -37,7 +37,20 @@ namespace coshell::mesh
   /// by 2^-refinement_level). Physical surfaces become material ids,
   /// physical curves boundary ids. Throws std::runtime_error naming the
   /// file on any failure.
-  void read_gmsh(Surface &surface, const std::string &file, unsigned int level);
+  /// gmsh constants given on the command line (-setnumber name value).
+  using GmshConstants = std::vector<std::pair<std::string, double>>;
+
+  /// Parses "name = value, name = value"; names are identifiers. Throws
+  /// std::invalid_argument "<where>: ..." naming the bad entry.
+  GmshConstants parse_gmsh_constants(const std::string &text,
+                                     const std::string &where);
+
+  /// 'constants' are set as well when a .geo file is meshed (and must be
+  /// empty for a .msh file).
+  void read_gmsh(Surface             &surface,
+                 const std::string   &file,
+                 unsigned int         level,
+                 const GmshConstants &constants = {});
 
   /// A relative file name is looked up as given, then beside the prm file.
   std::string resolve_path(const std::string &file,
@@ -52,6 +65,7 @@ namespace coshell::mesh
   {
     std::string               source = "rectangle";
     std::string               gmsh_file;
+    GmshConstants             gmsh_constants;
     TrianglePattern           pattern  = TrianglePattern::crossed;
     double                    length_x = 1.0, length_y = 1.0;
     unsigned int              subdivisions_x = 4, subdivisions_y = 4;

@@ -20,7 +20,15 @@ namespace coshell::model
   /// prm subsections "Material" and "Element".
   struct ElementParameters
   {
-    element::ShellMaterial       material;
+    /// E and nu; thickness and density when "Thickness" and "Density" are
+    /// numbers. When either is an expression, ShellModel evaluates it per
+    /// triangle and holds the area-weighted means here.
+    element::ShellMaterial material;
+    /// "Thickness" and "Density" when they are muparser expressions of
+    /// x, y, z (the triangle's reference centroid) and region (its
+    /// material id); empty when they are numbers (then in 'material').
+    std::string                  thickness_expression;
+    std::string                  density_expression;
     element::ShellElementOptions options;
     Formulation                  formulation = Formulation::linear;
 
@@ -28,6 +36,9 @@ namespace coshell::model
     /// Throws std::invalid_argument naming the parameter for non-physical
     /// material values.
     void parse_parameters(dealii::ParameterHandler &prm);
+
+    /// Whether thickness and density are single numbers (no expression).
+    bool uniform_properties() const;
 
     std::string formulation_name() const;
 

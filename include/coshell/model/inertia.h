@@ -66,9 +66,10 @@ namespace coshell::model
     void set_initial_velocity(ShellState &state) const;
 
   private:
-    const ShellModel       &model_;
-    InertiaParameters       parameters_;
-    element::MassProperties mass_;
+    const ShellModel &model_;
+    InertiaParameters parameters_;
+
+    element::MassProperties mass_properties(const CellIterator &cell) const;
 
     /// The cell's rates in global axes (rotations spatial).
     std::array<double, element::shell_dofs>
@@ -76,7 +77,8 @@ namespace coshell::model
                   const ShellState             &state,
                   const dealii::Vector<double> &rates) const;
     dealii::FullMatrix<double>
-    damping(const element::SpatialTriangle   &current,
+    damping(const CellIterator               &cell,
+            const element::SpatialTriangle   &current,
             const dealii::FullMatrix<double> &mass) const;
   };
 } // namespace coshell::model

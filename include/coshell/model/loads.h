@@ -19,6 +19,16 @@ namespace coshell::model
   /// Parses "x y z : vx vy vz; x y z : vx vy vz ...".
   std::vector<PointLoad> parse_point_loads(const std::string &text);
 
+  /// A force spread uniformly along the boundary edges with one id.
+  struct EdgeLoad
+  {
+    dealii::types::boundary_id boundary = 0;
+    dealii::Tensor<1, 3>       total; ///< resultant force
+  };
+
+  /// Parses "id : fx fy fz; id : fx fy fz ...".
+  std::vector<EdgeLoad> parse_edge_loads(const std::string &text);
+
   /// prm subsection "Loads". Every load is a dead load in global axes,
   /// except pressure, which acts along the (oriented) cell normals: the
   /// initial ones (dead pressure) or, optionally in co-rotational runs, the
@@ -50,6 +60,7 @@ namespace coshell::model
     bool                   pressure_follows = false;
     dealii::Tensor<1, 3>   gravity;
     std::vector<PointLoad> point_forces, point_moments;
+    std::vector<EdgeLoad>  edge_forces;
 
     void add_distributed(const ShellModel       &model,
                          double                  dead_pressure,

@@ -60,6 +60,14 @@ namespace coshell::model
     /// Vertex index closest to a point (among used vertices).
     unsigned int nearest_vertex(const dealii::Point<3> &point) const;
 
+    /// The material of a cell: E and nu, and the thickness and density
+    /// of its region and position (Material/Thickness and Density).
+    const element::ShellMaterial &material(const CellIterator &cell) const;
+    /// Area-weighted mean thickness of the cells around used vertex 'v'.
+    double vertex_thickness(unsigned int v) const;
+    /// Smallest and largest cell thickness.
+    std::pair<double, double> thickness_range() const;
+
     element::SpatialTriangle triangle(const CellIterator &cell) const;
     /// Unit normal of the cell, oriented consistently over the surface.
     dealii::Tensor<1, 3> unit_normal(const CellIterator &cell) const;
@@ -89,13 +97,23 @@ namespace coshell::model
     resultants(const dealii::Vector<double> &solution) const;
 
   private:
-    const mesh::Surface     &surface_;
-    ElementParameters        element_;
-    dealii::FESystem<2, 3>   fe_;
-    dealii::DoFHandler<2, 3> dof_handler_;
-    std::vector<VertexDofs>  vertex_dofs_;
-    std::vector<int>         normal_sign_;
+    const mesh::Surface                &surface_;
+    ElementParameters                   element_;
+    dealii::FESystem<2, 3>              fe_;
+    dealii::DoFHandler<2, 3>            dof_handler_;
+    std::vector<VertexDofs>             vertex_dofs_;
+    std::vector<int>                    normal_sign_;
+    std::vector<element::ShellMaterial> cell_materials_;
+    std::vector<double>                 vertex_thickness_;
 
     void number_vertex_dofs();
+    /// Evaluates Material/Thickness and Density per cell, checks them
+    /// (naming the cell) and keeps their area-weighted means in element_.
+    void assign_cell_materials();
+    /// Material/'name' = 'text' at every cell's reference centroid, or
+    /// 'uniform' everywhere when 'text' is empty.
+    std::vector<double> cell_values_of(const std::string &text,
+                                       const std::string &name,
+                                       double             uniform) const;
   };
 } // namespace coshell::model

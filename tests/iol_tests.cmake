@@ -1,0 +1,23 @@
+# The intraocular-lens scenes (prm/iol): the lens mesh, the compression
+# tests and their references. Label iol.
+set(CHECK_HAPTIC ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_haptic.py)
+
+# One C-loop haptic clamped at its root and pushed at its tip towards the
+# lens centre (0.01 mN, linear): tip stiffness against Castigliano's
+# curved-beam solution, 2.3843e-5 N/mm (bending E t w^3 / 12 plus axial
+# and shear). ANDES: 6.5 %, 2.2 %, 0.5 % stiffer on 182, 736, 3064
+# triangles; the finest level is asserted within 1 % (the issue asks 3 %).
+# CST locks in this in-plane bending: 1.54 times too stiff on the coarse
+# mesh (two triangles across the haptic), asserted above 1.4 times.
+function(coshell_haptic_test name membrane)
+  add_test(NAME ${name}
+           COMMAND ${COSHELL_PYTHON} ${CHECK_HAPTIC}
+                   --coshell $<TARGET_FILE:coshell>
+                   --prm ${COSHELL_PRM}/iol/haptic_compression.prm
+                   --output ${CMAKE_CURRENT_BINARY_DIR}/output/${name}
+                   --set "Element/Membrane element=${membrane}"
+                   --set ${no_vtu} ${ARGN})
+  set_tests_properties(${name} PROPERTIES LABELS iol)
+endfunction()
+coshell_haptic_test(iol.haptic_compression.andes andes --rtol 0.01)
+coshell_haptic_test(iol.haptic_compression.cst cst --stiffer-than 1.4)
