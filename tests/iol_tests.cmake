@@ -21,3 +21,16 @@ function(coshell_haptic_test name membrane)
 endfunction()
 coshell_haptic_test(iol.haptic_compression.andes andes --rtol 0.01)
 coshell_haptic_test(iol.haptic_compression.cst cst --stiffer-than 1.4)
+
+# The whole lens between two concave clamps closing from 13.1 to 10 mm
+# (ISO 11979-3): the barrier's gap stays non-negative at every step, the
+# two clamp forces balance within 1 % (quasi-static equilibrium), the
+# force grows with the compression and ends finite and positive.
+# The force curve is written to compression.csv (mN against mm).
+add_test(NAME iol.compression_iso11979
+         COMMAND ${COSHELL_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_compression.py
+                 --coshell $<TARGET_FILE:coshell>
+                 --prm ${COSHELL_PRM}/iol/compression_iso11979.prm
+                 --output ${CMAKE_CURRENT_BINARY_DIR}/output/iol.compression_iso11979
+                 --set ${no_vtu})
+set_tests_properties(iol.compression_iso11979 PROPERTIES LABELS iol)

@@ -1,0 +1,128 @@
+#!/usr/bin/env python3
+"""ISO 11979-3 compression test of the lens (prm/iol/compression_iso11979.prm):
+force against compressed diameter, in mN, with the optic's decentration,
+axial displacement and tilt. Writes compression.csv (and a PNG with
+--plot) to the output directory and checks what must hold: the barrier's
+gap stays non-negative at every step, the two clamps' forces balance
+(the lens is in quasi-static equilibrium), the force grows with the
+compression and is finite and positive at the end."""
+import argparse
+import csv
+import math
+import os
+
+from scene_runner import add_scene_arguments, exit_with, run_scene
+
+
+def read_clamp_forces(output):
+    """{time: (fx of obstacle 1, fx of obstacle 2, smallest gap)}"""
+    rows = {}
+    with open(os.path.join(output, "contact_forces.csv")) as f:
+        for row in csv.DictReader(f):
+            t = float(row["time"])
+            fx, gap = float(row["fx"]), float(row["min_distance"])
+            old = rows.get(t, [0.0, 0.0, math.inf])
+            old[int(row["obstacle"]) - 1] = fx
+            old[2] = min(old[2], gap)
+            rows[t] = old
+    return rows
+
+
+def read_optic(output):
+    """{time: (decentration, axial displacement, tilt in degrees)}"""
+    optic = {}
+    with open(os.path.join(output, "time_history.csv")) as f:
+        for row in csv.DictReader(f):
+            q = {k: float(v) for k, v in row.items() if k != "stage"}
+            slope_x = (q["rim_xp_uz"] - q["rim_xm_uz"]) / 6
+            slope_y = (q["rim_yp_uz"] - q["rim_ym_uz"]) / 6
+            # ISO 11979-3's axial displacement: the optic's, relative to
+            # where the haptics touch the clamps.
+            axial = q["optic_uz"] - 0.5 * (q["haptic_xp_uz"] +
+                                           q["haptic_xm_uz"])
+            optic[q["time"]] = (math.hypot(q["optic_ux"], q["optic_uy"]),
+                                axial,
+                                math.degrees(math.atan(math.hypot(slope_x,
+                                                                  slope_y))))
+    return optic
+
+
+def plot(rows, path):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, (left, right) = plt.subplots(1, 2, figsize=(10, 4))
+    diameters = [r[1] for r in rows]
+    left.plot(diameters, [r[2] for r in rows], "o-", ms=3)
+    left.set_xlabel("compressed diameter (mm)")
+    left.set_ylabel("clamp force (mN)")
+    left.invert_xaxis()
+    left.grid(alpha=0.3)
+    right.plot(diameters, [r[4] for r in rows], label="axial displacement (mm)")
+    right.plot(diameters, [r[3] for r in rows], label="decentration (mm)")
+    right.set_xlabel("compressed diameter (mm)")
+    right.invert_xaxis()
+    right.legend()
+    right.grid(alpha=0.3)
+    fig.suptitle("ISO 11979-3 compression of the C-loop lens (E = 1 MPa)")
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    add_scene_arguments(parser)
+    parser.add_argument("--clamp-start", type=float, default=1.55,
+                        help="clamp centre's distance from the lens centre "
+                        "at t = 0, mm")
+    parser.add_argument("--clamp-speed", type=float, default=1.0,
+                        help="mm/s")
+    parser.add_argument("--contact-radius", type=float, default=5.0,
+                        help="radius of the clamps' offset faces, mm")
+    parser.add_argument("--final-diameter", type=float, default=10.0)
+    parser.add_argument("--plot", help="PNG to write")
+    args = parser.parse_args()
+    run_scene(args.coshell, args.prm, args.output, args.set)
+    forces, optic = read_clamp_forces(args.output), read_optic(args.output)
+    rows = []
+    for t in sorted(forces):
+        right, left, gap = forces[t]
+        diameter = 2 * (args.clamp_start - args.clamp_speed * t +
+                        args.contact_radius)
+        rows.append((t, diameter, 1e3 * right, *optic[t][:2], optic[t][2],
+                     -1e3 * left, gap))
+    with open(os.path.join(args.output, "compression.csv"), "w") as f:
+        f.write("time,diameter_mm,force_mn,optic_decentration_mm,"
+                "optic_axial_mm,optic_tilt_deg,left_force_mn,min_gap_mm\n")
+        for r in rows:
+            f.write(",".join(f"{v:.8g}" for v in r) + "\n")
+    if args.plot:
+        plot(rows, args.plot)
+    failures = []
+    final = rows[-1]
+    print(f"at D = {final[1]:.3f} mm: force {final[2]:.5g} mN (left clamp "
+          f"{final[6]:.5g}), decentration {final[3]:.3g} mm, axial "
+          f"{final[4]:.4g} mm, tilt {final[5]:.3g} deg")
+    if abs(final[1] - args.final_diameter) > 1e-6:
+        failures.append(f"the run ended at D = {final[1]} mm")
+    if not (0 < final[2] < math.inf):
+        failures.append(f"final force {final[2]} mN is not finite and positive")
+    smallest = min(r[7] for r in rows)
+    print(f"smallest gap over the run: {smallest:.4g} mm")
+    if smallest < 0:
+        failures.append(f"gap {smallest} < 0: interpenetration")
+    imbalance = max(abs(r[2] - r[6]) for r in rows)
+    print(f"largest difference of the two clamp forces: {imbalance:.3g} mN")
+    if imbalance > 0.01 * final[2]:
+        failures.append(f"clamp forces differ by {imbalance} mN, more than "
+                        f"1 % of {final[2]} mN")
+    loaded = [r for r in rows if r[2] > 0.05 * final[2]]
+    drops = [(a[1], b[1]) for a, b in zip(loaded, loaded[1:]) if b[2] < a[2]]
+    if drops:
+        failures.append(f"force drops while compressing, first between "
+                        f"D = {drops[0][0]:.3f} and {drops[0][1]:.3f} mm")
+    exit_with(failures)
+
+
+if __name__ == "__main__":
+    main()
