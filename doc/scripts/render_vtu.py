@@ -236,21 +236,26 @@ class Frame:
 
 
 def read_pvd(path):
+    """The collection's frames in file order. coshell lists each time's
+    shell (part 0) before its obstacle files (parts 1, 2...); a new frame
+    starts at each shell entry, so a time written twice stays two frames."""
     root = ElementTree.parse(path).getroot()
     directory = os.path.dirname(os.path.abspath(path))
-    frames = {}
+    frames = []
     for entry in root.iter("DataSet"):
         time = float(entry.get("timestep", "0"))
-        frame = frames.setdefault(time, Frame(len(frames), time))
         file_name = os.path.join(directory, entry.get("file"))
-        if int(entry.get("part", "0")) == 0:
-            frame.shell_file = file_name
+        is_shell = int(entry.get("part", "0")) == 0
+        if is_shell or not frames or frames[-1].time != time:
+            frames.append(Frame(len(frames), time))
+        if is_shell:
+            frames[-1].shell_file = file_name
         else:
-            frame.obstacle_files.append(file_name)
-    missing = [f.time for f in frames.values() if f.shell_file is None]
+            frames[-1].obstacle_files.append(file_name)
+    missing = [f.time for f in frames if f.shell_file is None]
     if missing:
         raise ValueError(f"{path}: no shell (part 0) file at times {missing}")
-    return list(frames.values())
+    return frames
 
 
 def select_frames(frames, times, want_all):
@@ -350,7 +355,8 @@ def face_values(mesh, field_name):
     base, label = field_name, field_name
     if field_name.endswith("_magnitude") and field_name not in mesh.point_data \
             and field_name not in mesh.cell_data:
-        base, label = field_name[:-len("_magnitude")], f"|{base}|"
+        base = field_name[:-len("_magnitude")]
+        label = f"|{base}|"
     if base in mesh.cell_data:
         values = mesh.cell_data[base].astype(np.float64)
     elif base in mesh.point_data and mesh.n_cells:
@@ -379,7 +385,7 @@ def lambert_factors(faces, light):
     normals = faces.normals()
     lengths = np.linalg.norm(normals, axis=1)
     lengths[lengths == 0] = 1.0
-    return 0.35 + 0.65 * np.abs(normals @ light) / lengths
+    return 0.4 + 0.6 * np.abs(normals @ light) / lengths
 
 
 # --------------------------------------------------------------------------
@@ -486,7 +492,10 @@ def colour_mapping(scenes, args):
 def face_colours(scene, colouring, args):
     """(face RGBA, edge RGBA) for the shell's faces then the obstacles'."""
     colormap, norm = colouring
-    light = view_direction(*args.view)
+    # A headlight raised 30 degrees above the camera: a plate seen at a
+    # low angle still catches the light, and tilted facets stand out.
+    elevation, azimuth = args.view
+    light = view_direction(min(elevation + 30.0, 90.0), azimuth)
     if norm is not None:
         shell = colormap(norm(scene.shell_values))
     else:
@@ -585,7 +594,8 @@ def render_montage(scenes, bounds, colouring, args, path):
                    f"t = {scene.time:g}" if scene.time is not None else scene.label)
         all_axes.append(axes)
     # 3-D panels carry wide empty margins of their own: pack them closer.
-    figure.subplots_adjust(left=0.02, right=0.98, wspace=0.02, hspace=0.1)
+    figure.subplots_adjust(left=0.02, right=0.98, wspace=0.02, hspace=0.1,
+                           top=1.0 - 0.3 / figure.get_figheight())
     if args.title:
         # Above the figure's top edge, clear of the panels' titles; the
         # tight bounding box at saving takes it in.

@@ -78,6 +78,8 @@ namespace coshell::contact
     obstacle_trees_.resize(n);
     loads_.resize(n);
     vertex_gap_.assign(vertices.size(), infinity);
+    if (parameters_.self_contact)
+      find_connected_pieces();
     vertex_force_.reinit(model.n_dofs());
     smallest_gap_ = infinity;
   }
@@ -94,7 +96,9 @@ namespace coshell::contact
 
   double Contact::offset(const Pair &pair) const
   {
-    return offset(pair.obstacle, pair.shell_vertex_side, pair.shell);
+    return pair.self
+               ? self_offset(pair.shell, pair.other)
+               : offset(pair.obstacle, pair.shell_vertex_side, pair.shell);
   }
 
   double Contact::largest_offset(unsigned int obstacle) const
@@ -284,7 +288,8 @@ namespace coshell::contact
     // One tree of the swept shell triangles for every obstacle; inflated
     // by the largest reach, a superset of each obstacle's candidates.
     const Tree shell_tree = shell_triangle_tree(x, &dx, max_reach());
-    double     fraction   = 1;
+    double     fraction =
+        parameters_.self_contact ? self_ccd_fraction(x, dx, shell_tree) : 1.0;
     for (unsigned int o = 0; o < current_.size(); ++o)
       fraction =
           std::min(fraction, ccd_fraction(x, &dx, shell_tree, o, nullptr));
@@ -392,13 +397,21 @@ namespace coshell::contact
                shell_triangle_tree(positions_, nullptr, max_reach()));
     for (const Pair &pair : pairs_)
     {
-      const auto   p = pair_points(pair, positions_, current_[pair.obstacle]);
+      const auto   p        = pair_points(pair, positions_, other_side(pair));
       const double distance = std::sqrt(
           point_triangle_distance(p[0], p[1], p[2], p[3], false).value);
       if (distance > offset(pair))
         continue;
-      const Obstacle    &obstacle = parameters_.obstacles[pair.obstacle];
       std::ostringstream message;
+      if (pair.self)
+        message << "the shell starts in contact with itself (Contact/Self "
+                   "contact): shell vertex "
+                << pair.shell << " at " << p[0] << " is at distance "
+                << distance << " from shell triangle " << pair.other
+                << ", not more than their mean thickness " << offset(pair);
+      if (pair.self)
+        throw std::runtime_error(message.str());
+      const Obstacle &obstacle = parameters_.obstacles[pair.obstacle];
       message << "the shell starts inside obstacle '" << obstacle.name
               << "' (Contact/Obstacle " << pair.obstacle + 1 << "): "
               << (pair.shell_vertex_side

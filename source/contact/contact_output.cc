@@ -107,6 +107,18 @@ namespace coshell::contact
     contact_.prepare(point.state, point.time);
   }
 
+  void ContactContribution::coupled_vertices(
+      const model::EvaluationPoint             &point,
+      std::vector<std::array<unsigned int, 2>> &pairs) const
+  {
+    contact_.self_couplings(point.state, pairs);
+  }
+
+  bool ContactContribution::couples_beyond_cells() const
+  {
+    return contact_.self_contact();
+  }
+
   bool ContactContribution::pending() const
   {
     return contact_.obstacles_pending();

@@ -110,10 +110,11 @@ namespace coshell::contact
               : std::vector<bool>(candidates_.size(), true);
       for (unsigned int k = 0; k < candidates_.size(); ++k)
       {
-        const auto               &c   = candidates_[k];
+        const auto &c        = candidates_[k];
+        const long  obstacle = found_[k].self ? -1 : long(found_[k].obstacle);
         const std::array<long, 7> key = {
-            found_[k].obstacle, c.shell[0],    c.shell[1],   c.shell[2],
-            c.obstacle[0],      c.obstacle[1], c.obstacle[2]};
+            obstacle,      c.shell[0],    c.shell[1],   c.shell[2],
+            c.obstacle[0], c.obstacle[1], c.obstacle[2]};
         if (!keep[k] || !seen_.insert(key).second)
           continue;
         contact_.pairs_.push_back(found_[k]);
@@ -145,6 +146,8 @@ namespace coshell::contact
       find_shell_vertex_pairs(o, x, selector);
       find_obstacle_vertex_pairs(o, x, shell_tree, shell_box, selector);
     }
+    if (parameters_.self_contact)
+      find_self_pairs(x, shell_tree, selector);
   }
 
   void Contact::find_shell_vertex_pairs(unsigned int                 o,
@@ -170,6 +173,36 @@ namespace coshell::contact
                         std::sqrt(d.value),
                         false},
                        {true, o, v, hit.second, shell_vertex_area_[v]});
+      }
+      selector.settle();
+    }
+  }
+
+  void Contact::find_self_pairs(const std::vector<Point<3>> &x,
+                                const Tree                  &shell_tree,
+                                PairSelector                &selector)
+  {
+    const double activation =
+        parameters_.method == Method::barrier ? activation_ : 0.0;
+    Hits hits;
+    for (const unsigned v : shell_vertices_)
+    {
+      hits.clear();
+      shell_tree.query(bgi::intersects(BoundingBox<3>({x[v], x[v]})),
+                       std::back_inserter(hits));
+      for (const auto &hit : hits)
+      {
+        if (!self_pair_allowed(v, hit.second))
+          continue;
+        const auto &t = shell_triangles_[hit.second];
+        const auto  d =
+            point_triangle_distance(x[v], x[t[0]], x[t[1]], x[t[2]], false);
+        if (std::sqrt(d.value) < self_offset(v, hit.second) + activation)
+          selector.add({{-1, -1, long(v)},
+                        feature_vertices(t, d.feature),
+                        std::sqrt(d.value),
+                        false},
+                       {true, 0, v, hit.second, shell_vertex_area_[v], true});
       }
       selector.settle();
     }
@@ -236,6 +269,11 @@ namespace coshell::contact
     double largest = 0;
     for (unsigned int o = 0; o < current_.size(); ++o)
       largest = std::max(largest, reach(o));
+    if (parameters_.self_contact)
+      largest = std::max(
+          largest,
+          largest_thickness_ +
+              (parameters_.method == Method::barrier ? activation_ : 0.0));
     return largest;
   }
 
@@ -246,6 +284,11 @@ namespace coshell::contact
                        const std::vector<Point<3>> &x,
                        const std::vector<Point<3>> &X) const
   {
+    if (pair.self)
+    {
+      const auto &t = shell_triangles_[pair.other];
+      return {x[pair.shell], x[t[0]], x[t[1]], x[t[2]]};
+    }
     if (pair.shell_vertex_side)
     {
       const auto &t =
@@ -258,12 +301,17 @@ namespace coshell::contact
 
   void Contact::pair_dofs(const Pair &pair, model::DofBlock &block) const
   {
-    const unsigned int n_vertices = pair.shell_vertex_side ? 1 : 3;
+    const unsigned int n_vertices = pair.self                ? 4
+                                    : pair.shell_vertex_side ? 1
+                                                             : 3;
     block.dofs.resize(3 * n_vertices);
     for (unsigned int i = 0; i < n_vertices; ++i)
     {
       const unsigned v =
-          pair.shell_vertex_side ? pair.shell : shell_triangles_[pair.shell][i];
+          pair.self
+              ? (i == 0 ? pair.shell : shell_triangles_[pair.other][i - 1])
+          : pair.shell_vertex_side ? pair.shell
+                                   : shell_triangles_[pair.shell][i];
       for (unsigned int c = 0; c < 3; ++c)
         block.dofs[3 * i + c] = model_.vertex_dofs(v)[c];
     }
@@ -289,15 +337,15 @@ namespace coshell::contact
     const auto start = std::chrono::steady_clock::now();
     for (auto &load : loads_)
       load = ObstacleLoad();
-    vertex_force_ = 0;
+    self_active_pairs_ = 0;
+    vertex_force_      = 0;
     std::fill(vertex_gap_.begin(), vertex_gap_.end(),
               std::numeric_limits<double>::infinity());
     model::DofBlock block;
     normal_forces_.clear();
     for (const Pair &pair : pairs_)
     {
-      const auto points =
-          pair_points(pair, positions_, current_[pair.obstacle]);
+      const auto   points = pair_points(pair, positions_, other_side(pair));
       const auto   s = point_triangle_distance(points[0], points[1], points[2],
                                                points[3], true);
       const double distance = std::sqrt(s.value);
@@ -316,8 +364,12 @@ namespace coshell::contact
         dg[i]       = s.gradient[i] / (2 * distance);
         gradient[i] = weight * phi.first * dg[i];
       }
+      // The shell's coordinates among the pair's 12: all of them for self
+      // contact, the point's or the triangle's against an obstacle.
       const unsigned int first = pair.shell_vertex_side ? 0 : 3;
-      const unsigned int last  = pair.shell_vertex_side ? 3 : 12;
+      const unsigned int last  = pair.self                ? 12
+                                 : pair.shell_vertex_side ? 3
+                                                          : 12;
       pair_dofs(pair, block);
       for (unsigned int i = first; i < last; ++i)
         block.vector[i - first] = -gradient[i]; // force on the shell
@@ -325,11 +377,12 @@ namespace coshell::contact
         pair_hessian(s, dg, distance, weight, phi, first, last, block.matrix);
       record_pair(pair, points, gradient, gap, block);
       // |d E / d distance| is the normal force of the pair, which
-      // friction will use in the next step.
-      normal_forces_.push_back({pair, weight * std::abs(phi.first),
-                                s.parameters,
-                                points[0] - closest_point(points, s)});
-      if (pending_)
+      // friction will use in the next step (self contact is frictionless).
+      if (!pair.self)
+        normal_forces_.push_back({pair, weight * std::abs(phi.first),
+                                  s.parameters,
+                                  points[0] - closest_point(points, s)});
+      if (pending_ && !pair.self)
         anticipate_obstacle(pair, s, dg, distance, weight, phi, block);
       sink(block);
     }
@@ -417,26 +470,30 @@ namespace coshell::contact
                             double                         gap,
                             const model::DofBlock         &block)
   {
-    ObstacleLoad &load = loads_[pair.obstacle];
-    ++load.active_pairs;
-    for (unsigned int k = 0; k < 4; ++k)
+    for (unsigned int k = 0; k < 4 && !pair.self; ++k)
     {
       const bool on_obstacle = pair.shell_vertex_side ? k > 0 : k == 0;
       if (!on_obstacle)
         continue;
+      ObstacleLoad      &load = loads_[pair.obstacle];
       const Tensor<1, 3> f(
           {-gradient[3 * k], -gradient[3 * k + 1], -gradient[3 * k + 2]});
       load.force += f;
       load.moment += cross_product_3d(points[k], f);
     }
+    if (pair.self)
+      ++self_active_pairs_;
+    else
+      ++loads_[pair.obstacle].active_pairs;
     for (unsigned int i = 0; i < block.dofs.size(); ++i)
       vertex_force_[block.dofs[i]] += block.vector[i];
     const auto mark = [&](unsigned v)
     { vertex_gap_[v] = std::min(vertex_gap_[v], gap); };
     if (pair.shell_vertex_side)
       mark(pair.shell);
-    else
-      for (const unsigned v : shell_triangles_[pair.shell])
+    const unsigned int triangle = pair.self ? pair.other : pair.shell;
+    if (pair.self || !pair.shell_vertex_side)
+      for (const unsigned v : shell_triangles_[triangle])
         mark(v);
   }
 } // namespace coshell::contact

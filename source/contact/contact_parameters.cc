@@ -59,6 +59,18 @@ namespace coshell::contact
         "Coulomb friction is smoothed to a viscous law (IPC's epsilon_v): "
         "a sticking contact creeps at a fraction of it. In statics the "
         "pseudo-time of a step stands for its duration.");
+    prm.declare_entry(
+        "Self contact", "false", Patterns::Bool(),
+        "Also keep the shell from itself: shell vertices against shell "
+        "triangles, at least the mean of their half thicknesses apart, by "
+        "the same barrier or penalty and step filter (frictionless).");
+    prm.declare_entry(
+        "Self contact exclusion", "2", Patterns::Double(1),
+        "Self contact ignores a vertex-triangle pair of the same connected "
+        "piece of shell whose distance in the reference configuration is "
+        "below this multiple of the distance it must keep (dimensionless, "
+        ">= 1): neighbours on a thick shell are closer than its thickness "
+        "and are held apart by the elements, not by contact.");
     ObstacleParameters::declare_parameters(prm);
     prm.leave_subsection();
   }
@@ -79,6 +91,8 @@ namespace coshell::contact
     project_tangent        = prm.get_bool("Projected tangent");
     stiction_velocity      = prm.get_double("Stiction velocity");
     local_minima_only      = prm.get("Pairs") == "local minima";
+    self_contact           = prm.get_bool("Self contact");
+    self_exclusion         = prm.get_double("Self contact exclusion");
     try
     {
       // Off costs nothing: the obstacle meshes are not even read.
@@ -91,8 +105,9 @@ namespace coshell::contact
       throw;
     }
     prm.leave_subsection();
-    if (enabled() && obstacles.empty())
+    if (enabled() && obstacles.empty() && !self_contact)
       throw std::runtime_error("Contact/Method is " + name +
-                               " but no obstacle has a Mesh file");
+                               " but no obstacle has a Mesh file and Self "
+                               "contact is off");
   }
 } // namespace coshell::contact

@@ -536,6 +536,11 @@ namespace coshell::driver
       row.push_back(out.contact->smallest_gap());
       out.contact_forces->row(row);
     }
+    // Self contact: obstacle 0, no net force (internal to the shell).
+    if (out.contact->self_contact())
+      out.contact_forces->row({double(step), time, 0, 0, 0, 0, 0, 0, 0,
+                               double(out.contact->self_active_pairs()),
+                               out.contact->smallest_gap()});
   }
 
   void Scene::run_dynamic_stage(const Stage         &stage,

@@ -236,11 +236,20 @@ namespace coshell::model
       m = -m;
   }
 
-  void ShellModel::make_sparsity(const AffineConstraints<double> &constraints,
-                                 SparsityPattern                 &pattern) const
+  void ShellModel::make_sparsity(
+      const AffineConstraints<double>                &constraints,
+      SparsityPattern                                &pattern,
+      const std::vector<std::array<unsigned int, 2>> &coupled) const
   {
     DynamicSparsityPattern dsp(n_dofs());
     DoFTools::make_sparsity_pattern(dof_handler_, dsp, constraints, false);
+    for (const auto &[v, w] : coupled)
+      for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int j = 0; j < 3; ++j)
+        {
+          dsp.add(vertex_dofs_[v][i], vertex_dofs_[w][j]);
+          dsp.add(vertex_dofs_[w][j], vertex_dofs_[v][i]);
+        }
     pattern.copy_from(dsp);
   }
 

@@ -22,6 +22,8 @@ namespace coshell::model
     constraints_.copy_from(constraints);
     homogeneous_.copy_from(constraints);
     model_.make_sparsity(homogeneous_, sparsity_);
+    for (const auto &contribution : contributions_)
+      couples_beyond_cells_ |= contribution->couples_beyond_cells();
     for (auto &force : forces_)
       force.reinit(model_.n_dofs());
     global_force_.reinit(model_.n_dofs());
@@ -58,6 +60,21 @@ namespace coshell::model
   const SparsityPattern &ShellProblem::sparsity() const
   {
     return sparsity_;
+  }
+
+  void ShellProblem::begin_solve()
+  {
+    std::vector<std::array<unsigned int, 2>> couplings;
+    const EvaluationPoint                    at = point();
+    for (const auto &contribution : contributions_)
+      contribution->coupled_vertices(at, couplings);
+    std::sort(couplings.begin(), couplings.end());
+    couplings.erase(std::unique(couplings.begin(), couplings.end()),
+                    couplings.end());
+    if (couplings == coupled_vertices_)
+      return;
+    coupled_vertices_ = std::move(couplings);
+    model_.make_sparsity(homogeneous_, sparsity_, coupled_vertices_);
   }
 
   EvaluationPoint ShellProblem::point() const
@@ -149,14 +166,31 @@ namespace coshell::model
             for (unsigned int i = 0; i < block.dofs.size(); ++i)
               force[block.dofs[i]] += block.vector[i];
             if (tangent)
-              constraints_.distribute_local_to_global(
-                  block.matrix, block.vector, block.dofs, *tangent, residual);
+              constraints_.distribute_local_to_global(within_pattern(block),
+                                                      block.vector, block.dofs,
+                                                      *tangent, residual);
             else
               constraints_.distribute_local_to_global(block.vector, block.dofs,
                                                       residual);
           },
           tangent != nullptr);
     }
+  }
+
+  /// The block's matrix without the couplings the pattern lacks (a self
+  /// contact pair that came closer than the step's margin foresaw): its
+  /// force stays exact, the tangent approximate for that step.
+  const FullMatrix<double> &
+  ShellProblem::within_pattern(const DofBlock &block) const
+  {
+    if (!couples_beyond_cells_)
+      return block.matrix;
+    trimmed_ = block.matrix;
+    for (unsigned int i = 0; i < block.dofs.size(); ++i)
+      for (unsigned int j = 0; j < block.dofs.size(); ++j)
+        if (!sparsity_.exists(block.dofs[i], block.dofs[j]))
+          trimmed_(i, j) = 0;
+    return trimmed_;
   }
 
   double ShellProblem::assembly_seconds() const

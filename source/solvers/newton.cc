@@ -120,6 +120,7 @@ namespace coshell::solvers
   unsigned int Newton::solve(NonlinearProblem &problem,
                              const Observer   &observer) const
   {
+    problem.begin_solve();
     SparseMatrix<double> tangent(problem.sparsity());
     Vector<double>       residual(problem.sparsity().n_rows());
     Vector<double>       step_increment(residual.size());
@@ -178,6 +179,7 @@ namespace coshell::solvers
   double Newton::single_correction(NonlinearProblem &problem,
                                    const Observer   &observer) const
   {
+    problem.begin_solve();
     SparseMatrix<double> tangent(problem.sparsity());
     Vector<double>       residual(problem.sparsity().n_rows());
     problem.evaluate(residual, &tangent);

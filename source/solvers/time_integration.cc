@@ -112,6 +112,10 @@ namespace coshell::solvers
       {
         return problem_.sparsity();
       }
+      void begin_solve() override
+      {
+        problem_.begin_solve();
+      }
       void evaluate(Vector<double> &r, SparseMatrix<double> *K) override
       {
         problem_.evaluate(r, K);

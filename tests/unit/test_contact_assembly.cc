@@ -1,12 +1,13 @@
 // The contact contribution of a small plate over a rigid plane, assembled
 // as ShellProblem does: its tangent against central differences of its
 // forces, with the barrier and with friction, and the equal and opposite
-// force on the obstacle.
+// force on the obstacle; the same tangent check for self contact.
 
 #include <coshell/contact/contact.h>
 #include <coshell/io/expressions.h>
 #include <coshell/mesh/mesh.h>
 
+#include <deal.II/grid/tria_description.h>
 #include <deal.II/lac/full_matrix.h>
 
 #include <gtest/gtest.h>
@@ -68,6 +69,60 @@ namespace
     return out;
   }
 
+  model::ElementParameters unit_thickness()
+  {
+    model::ElementParameters element;
+    element.material.thickness = 1;
+    return element;
+  }
+
+  /// Barrier, activation 0.1, kappa 1, exact (unprojected) tangent.
+  contact::ContactParameters barrier_parameters()
+  {
+    contact::ContactParameters parameters;
+    parameters.method              = contact::Method::barrier;
+    parameters.activation_distance = 0.1;
+    parameters.barrier_stiffness   = 1;
+    parameters.project_tangent     = false;
+    return parameters;
+  }
+
+  /// The contribution's tangent at time 1 against central differences of
+  /// its forces over every translation (contact does not see rotations);
+  /// returns what was assembled there.
+  Assembled
+  expect_tangent_matches_forces(contact::ContactContribution &contribution,
+                                model::ShellState            &state,
+                                unsigned int                  n)
+  {
+    const Assembled at    = assemble(contribution, state, 1, n);
+    double          scale = 0;
+    for (unsigned int i = 0; i < n; ++i)
+      for (unsigned int j = 0; j < n; ++j)
+        scale = std::max(scale, std::abs(at.tangent(i, j)));
+    EXPECT_GT(scale, 0);
+    const double h = 1e-7;
+    for (unsigned int j = 0; j < n; ++j)
+    {
+      if (j % 6 >= 3)
+        continue;
+      Vector<double> step(n);
+      step[j] = h;
+      state.apply_increment(step);
+      const Vector<double> plus = assemble(contribution, state, 1, n).force;
+      step[j]                   = -2 * h;
+      state.apply_increment(step);
+      const Vector<double> minus = assemble(contribution, state, 1, n).force;
+      step[j]                    = h;
+      state.apply_increment(step);
+      for (unsigned int i = 0; i < n; ++i)
+        EXPECT_NEAR(-(plus[i] - minus[i]) / (2 * h), at.tangent(i, j),
+                    1e-5 * scale)
+            << "entry " << i << ", " << j;
+    }
+    return at;
+  }
+
   /// Plate [0, 2]^2, h = 1 (offset 0.5), over the plane z = -0.55 (gap
   /// 0.05 < activation 0.1); after a converged state at t = 0 the plate is
   /// moved sideways and down, and the tangent at t = 1 is checked.
@@ -75,18 +130,12 @@ namespace
   {
     mesh::Surface surface;
     mesh::make_rectangle(surface, 2, 2, 2, 2, mesh::TrianglePattern::crossed);
-    model::ElementParameters element;
-    element.material.thickness = 1;
-    const model::ShellModel    model(surface, element,
+    const model::ShellModel    model(surface, unit_thickness(),
                                      dealii::Tensor<1, 3>({0, 0, 1}));
     model::ShellState          state(model, false);
-    contact::ContactParameters parameters;
-    parameters.method              = contact::Method::barrier;
-    parameters.activation_distance = 0.1;
-    parameters.barrier_stiffness   = 1;
-    parameters.stiction_velocity   = 0.01;
-    parameters.project_tangent     = false;
-    parameters.obstacles           = {plane(-0.55, friction)};
+    contact::ContactParameters parameters = barrier_parameters();
+    parameters.stiction_velocity          = 0.01;
+    parameters.obstacles                  = {plane(-0.55, friction)};
     contact::Contact contact(model, parameters);
     contact.check_initial_configuration(state, 0);
     contact::ContactContribution contribution(contact);
@@ -103,31 +152,7 @@ namespace
       move[dofs[2]]    = -0.01 - 0.002 * (v % 2);
     }
     state.apply_increment(move);
-    const Assembled at    = assemble(contribution, state, 1, n);
-    double          scale = 0;
-    for (unsigned int i = 0; i < n; ++i)
-      for (unsigned int j = 0; j < n; ++j)
-        scale = std::max(scale, std::abs(at.tangent(i, j)));
-    ASSERT_GT(scale, 0);
-    const double h = 1e-7;
-    for (unsigned int j = 0; j < n; ++j)
-    {
-      if (j % 6 >= 3) // rotations: contact does not see them
-        continue;
-      Vector<double> step(n);
-      step[j] = h;
-      state.apply_increment(step);
-      const Vector<double> plus = assemble(contribution, state, 1, n).force;
-      step[j]                   = -2 * h;
-      state.apply_increment(step);
-      const Vector<double> minus = assemble(contribution, state, 1, n).force;
-      step[j]                    = h;
-      state.apply_increment(step);
-      for (unsigned int i = 0; i < n; ++i)
-        EXPECT_NEAR(-(plus[i] - minus[i]) / (2 * h), at.tangent(i, j),
-                    1e-5 * scale)
-            << "entry " << i << ", " << j;
-    }
+    const Assembled at = expect_tangent_matches_forces(contribution, state, n);
     // Action and reaction: the force on the plane balances the shell's.
     assemble(contribution, state, 1, n);
     dealii::Tensor<1, 3> on_shell;
@@ -149,4 +174,72 @@ TEST(ContactAssembly, BarrierTangentMatchesFiniteDifferences)
 TEST(ContactAssembly, FrictionTangentMatchesFiniteDifferences)
 {
   check_tangent(0.5);
+}
+
+namespace
+{
+  /// Two plates as one shell mesh: [0, 2]^2 in z = 0 (2 x 2 squares) and,
+  /// non-matching, [0, 2]^2 shifted by 'shift' (3 x 3 squares).
+  void make_two_plates(mesh::Surface              &surface,
+                       const dealii::Tensor<1, 3> &shift)
+  {
+    std::vector<Point<3>>            vertices;
+    std::vector<dealii::CellData<2>> cells;
+    for (const unsigned int n : {2u, 3u})
+    {
+      mesh::Surface piece;
+      mesh::make_rectangle(piece, 2, 2, n, n, mesh::TrianglePattern::crossed);
+      const unsigned int first = vertices.size();
+      for (const auto &v : piece.get_vertices())
+        vertices.push_back(n == 2 ? v : v + shift);
+      for (const auto &cell : piece.active_cell_iterators())
+      {
+        dealii::CellData<2> data(3);
+        for (unsigned int i = 0; i < 3; ++i)
+          data.vertices[i] = first + cell->vertex_index(i);
+        cells.push_back(data);
+      }
+    }
+    surface.create_triangulation(vertices, cells, dealii::SubCellData());
+  }
+} // namespace
+
+// Self contact: the upper plate (h = 1) 1.05 above the lower (gap 0.05 <
+// activation 0.1), then moved down and sideways: the tangent of the
+// vertex-triangle pairs of the shell with itself against central
+// differences, and the forces, internal to the shell, summing to zero.
+TEST(ContactAssembly, SelfContactTangentMatchesFiniteDifferencesAndBalances)
+{
+  mesh::Surface surface;
+  make_two_plates(surface, dealii::Tensor<1, 3>({-0.3, 0.2, 1.05}));
+  const model::ShellModel    model(surface, unit_thickness(),
+                                   dealii::Tensor<1, 3>({0, 0, 1}));
+  model::ShellState          state(model, false);
+  contact::ContactParameters parameters = barrier_parameters();
+  parameters.self_contact               = true;
+  contact::Contact contact(model, parameters);
+  contact.check_initial_configuration(state, 0);
+  contact::ContactContribution contribution(contact);
+  const unsigned int           n = model.n_dofs();
+  Vector<double>               move(n);
+  for (unsigned int v = 0; v < surface.n_vertices(); ++v)
+    if (surface.get_vertices()[v][2] > 0.5)
+    {
+      const auto &dofs = model.vertex_dofs(v);
+      move[dofs[0]]    = 0.004 + 0.001 * v;
+      move[dofs[2]]    = -0.01 - 0.002 * (v % 2);
+    }
+  state.apply_increment(move);
+  const Assembled at = expect_tangent_matches_forces(contribution, state, n);
+  EXPECT_GT(contact.self_active_pairs(), 0u);
+  dealii::Tensor<1, 3> total;
+  double               largest = 0;
+  for (unsigned int v = 0; v < surface.n_vertices(); ++v)
+    for (unsigned int c = 0; c < 3; ++c)
+    {
+      total[c] += at.force[model.vertex_dofs(v)[c]];
+      largest = std::max(largest, std::abs(at.force[model.vertex_dofs(v)[c]]));
+    }
+  EXPECT_GT(largest, 0);
+  EXPECT_LT(total.norm(), 1e-12 * largest);
 }

@@ -44,7 +44,12 @@ namespace coshell::contact
     bool local_minima_only = false;
     /// Friction: tangential speed below which friction is smoothed (the
     /// creep speed of sticking), length / s.
-    double                stiction_velocity = 1e-3;
+    double stiction_velocity = 1e-3;
+    /// Shell against shell (vertex-triangle pairs), frictionless.
+    bool self_contact = false;
+    /// Pairs of one connected piece closer than this multiple of their
+    /// offset in the reference configuration are not self-contact pairs.
+    double                self_exclusion = 2;
     std::vector<Obstacle> obstacles;
 
     static void declare_parameters(dealii::ParameterHandler &prm);
@@ -90,6 +95,20 @@ namespace coshell::contact
                                const dealii::Vector<double> &correction) const;
     void   save();
     void   restore();
+    /// Self contact: the shell vertex pairs whose unknowns the tangent
+    /// will couple in the coming step (pairs within reach plus a margin
+    /// of the largest thickness), each as (vertex, vertex).
+    bool self_contact() const
+    {
+      return parameters_.self_contact;
+    }
+    /// Self-contact pairs with a force at the last evaluation.
+    unsigned int self_active_pairs() const
+    {
+      return self_active_pairs_;
+    }
+    void self_couplings(const model::ShellState                  &state,
+                        std::vector<std::array<unsigned int, 2>> &pairs) const;
 
     /// Per obstacle, at the last evaluation.
     const std::vector<ObstacleLoad> &obstacle_loads() const;
@@ -118,6 +137,8 @@ namespace coshell::contact
   private:
     /// A shell vertex against an obstacle triangle (shell_vertex_side), or
     /// an obstacle vertex against a shell triangle.
+    /// A self-contact pair is a shell vertex ('shell') against a shell
+    /// triangle ('other'); shell_vertex_side is true, 'obstacle' unused.
     struct Pair
     {
       bool         shell_vertex_side = true;
@@ -125,6 +146,7 @@ namespace coshell::contact
       unsigned int shell             = 0; ///< shell vertex or triangle index
       unsigned int other             = 0; ///< obstacle triangle or vertex
       double       area = 0; ///< the pair's share of the shell, length^2
+      bool         self = false;
     };
     /// What friction keeps of a pair from the last converged state.
     struct NormalForce
@@ -170,7 +192,21 @@ namespace coshell::contact
                   unsigned int shell) const;
     /// The largest offset of any pair of this obstacle.
     double largest_offset(unsigned int obstacle) const;
-    double reach(unsigned int obstacle) const;
+    /// Self contact: the distance shell vertex v and shell triangle t
+    /// keep (the mean of their half thicknesses, i.e. the sum of halves).
+    double self_offset(unsigned int v, unsigned int t) const;
+    /// Whether v and t may form a self-contact pair: v is not a corner of
+    /// t, and they are on different connected pieces or were at least
+    /// Self contact exclusion times their offset apart in the reference
+    /// configuration.
+    bool self_pair_allowed(unsigned int v, unsigned int t) const;
+    /// Labels each shell vertex with its connected piece.
+    void find_connected_pieces();
+    /// The positions the pair's other side takes its points from.
+    const std::vector<dealii::Point<3>> &other_side(const Pair &pair) const;
+    std::vector<unsigned int>            piece_; ///< per shell vertex
+    unsigned int                         self_active_pairs_ = 0;
+    double                               reach(unsigned int obstacle) const;
     std::vector<dealii::Point<3>>
            shell_positions(const model::ShellState &state) const;
     void   rebuild_tree(unsigned int obstacle);
@@ -213,11 +249,18 @@ namespace coshell::contact
                      const model::DofBlock                 &block);
     class PairSelector;
     /// 'shell_tree': the shell triangles at x, inflated by max_reach().
-    void   find_pairs(const std::vector<dealii::Point<3>> &x,
-                      const Tree                          &shell_tree);
-    void   find_shell_vertex_pairs(unsigned int                         obstacle,
-                                   const std::vector<dealii::Point<3>> &x,
-                                   PairSelector                        &selector);
+    void find_pairs(const std::vector<dealii::Point<3>> &x,
+                    const Tree                          &shell_tree);
+    void find_shell_vertex_pairs(unsigned int                         obstacle,
+                                 const std::vector<dealii::Point<3>> &x,
+                                 PairSelector                        &selector);
+    void find_self_pairs(const std::vector<dealii::Point<3>> &x,
+                         const Tree                          &shell_tree,
+                         PairSelector                        &selector);
+    /// Largest fraction of dx that keeps every self pair apart.
+    double self_ccd_fraction(const std::vector<dealii::Point<3>>     &x,
+                             const std::vector<dealii::Tensor<1, 3>> &dx,
+                             const Tree &swept_shell_tree) const;
     void   find_obstacle_vertex_pairs(unsigned int obstacle,
                                       const std::vector<dealii::Point<3>> &x,
                                       const Tree                   &shell_tree,
@@ -250,10 +293,14 @@ namespace coshell::contact
                                 const model::BlockSink       &sink,
                                 bool                          with_tangent) override;
     void             prepare(const model::EvaluationPoint &point) override;
-    bool             pending() const override;
-    double           admissible_fraction(
-                  const model::ShellState      &state,
-                  const dealii::Vector<double> &correction) const override;
+    void             coupled_vertices(
+                    const model::EvaluationPoint             &point,
+                    std::vector<std::array<unsigned int, 2>> &pairs) const override;
+    bool   couples_beyond_cells() const override;
+    bool   pending() const override;
+    double admissible_fraction(
+        const model::ShellState      &state,
+        const dealii::Vector<double> &correction) const override;
     void save() override;
     void restore() override;
     bool symmetric_tangent() const override;

@@ -6,6 +6,7 @@
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/vector.h>
 
+#include <array>
 #include <functional>
 #include <vector>
 
@@ -85,6 +86,20 @@ namespace coshell::model
                             const BlockSink & /*sink*/,
                             bool /*with_tangent*/)
     {
+    }
+
+    /// Pairs of mesh vertices whose translations this contribution may
+    /// couple in the coming solve beyond the cells' own (self contact),
+    /// so that the tangent's pattern can hold them.
+    virtual void
+    coupled_vertices(const EvaluationPoint & /*point*/,
+                     std::vector<std::array<unsigned int, 2>> & /*pairs*/) const
+    {
+    }
+    /// Whether add_blocks() may couple vertices of different cells.
+    virtual bool couples_beyond_cells() const
+    {
+      return false;
     }
 
     /// Called before every evaluation at 'point' (it may move obstacles

@@ -79,9 +79,12 @@ namespace coshell::model
     void orient_moments(const CellIterator       &cell,
                         element::ShellResultants &resultants) const;
 
-    /// Sparsity of the stiffness with the given constraints.
-    void make_sparsity(const dealii::AffineConstraints<double> &constraints,
-                       dealii::SparsityPattern                 &pattern) const;
+    /// Sparsity of the stiffness with the given constraints, plus the
+    /// translations of each pair of 'coupled' vertices (self contact).
+    void make_sparsity(
+        const dealii::AffineConstraints<double>        &constraints,
+        dealii::SparsityPattern                        &pattern,
+        const std::vector<std::array<unsigned int, 2>> &coupled = {}) const;
     /// Assembles the linear stiffness (multithreaded with WorkStream).
     void
     assemble_stiffness(const dealii::AffineConstraints<double> &constraints,

@@ -55,9 +55,12 @@ namespace coshell::model
 
     // solvers::NonlinearProblem
     const dealii::SparsityPattern &sparsity() const override;
-    void                           evaluate(dealii::Vector<double>       &residual,
-                                            dealii::SparseMatrix<double> *tangent) override;
-    double                         force_scale() const override;
+    /// Grows the pattern by the vertex couplings the contributions ask
+    /// for (self contact); rebuilt only when they change.
+    void   begin_solve() override;
+    void   evaluate(dealii::Vector<double>       &residual,
+                    dealii::SparseMatrix<double> *tangent) override;
+    double force_scale() const override;
     bool   prescribed_increment_pending() const override;
     void   distribute(dealii::Vector<double> &correction) const override;
     void   apply_increment(const dealii::Vector<double> &correction) override;
@@ -108,9 +111,15 @@ namespace coshell::model
     std::vector<std::unique_ptr<Contribution>> contributions_;
     PrescribedIncrementFunction                prescribed_;
     dealii::SparsityPattern                    sparsity_;
-    Schedule                                   schedule_;
-    double                                     time_ = 0, load_factor_ = 0;
-    double acceleration_coefficient_ = 0, velocity_coefficient_ = 0;
+    /// The extra vertex couplings sparsity_ was built with.
+    std::vector<std::array<unsigned int, 2>> coupled_vertices_;
+    mutable dealii::FullMatrix<double>       trimmed_;
+    bool                                     couples_beyond_cells_ = false;
+    const dealii::FullMatrix<double>          &
+    within_pattern(const DofBlock &block) const;
+    Schedule schedule_;
+    double   time_ = 0, load_factor_ = 0;
+    double   acceleration_coefficient_ = 0, velocity_coefficient_ = 0;
     std::array<dealii::Vector<double>, n_force_kinds> forces_;
     bool                                              pending_ = false;
     double                 converged_force_scale_              = 0;

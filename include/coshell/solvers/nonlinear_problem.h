@@ -15,8 +15,12 @@ namespace coshell::solvers
   public:
     virtual ~NonlinearProblem() = default;
 
-    /// Pattern of the tangent (fixed while the problem lives).
+    /// Pattern of the tangent. It may change only in begin_solve().
     virtual const dealii::SparsityPattern &sparsity() const = 0;
+
+    /// Called by Newton before it sizes the tangent of a solve: a problem
+    /// whose couplings grow (self contact) updates sparsity() here.
+    virtual void begin_solve() {}
 
     /// Residual r (out-of-balance force, condensed with the constraints)
     /// at the current iterate and, if 'tangent' is given, K = -dr/dx for

@@ -1,0 +1,118 @@
+// Self contact: shell vertices against shell triangles, with the same
+// barrier or penalty as against obstacles. What is particular to it: which
+// pairs count (not a triangle's own corners, not neighbours closer than
+// the shell is thick), the step filter with both sides moving, and the
+// couplings the tangent needs beyond the mesh's own.
+
+#include <coshell/contact/ccd.h>
+#include <coshell/contact/contact.h>
+#include <coshell/contact/distances.h>
+
+#include <cmath>
+#include <numeric>
+
+namespace coshell::contact
+{
+  using namespace dealii;
+  namespace bgi = boost::geometry::index;
+
+  namespace
+  {
+    using Hits = std::vector<std::pair<BoundingBox<3>, unsigned>>;
+
+    unsigned int root_of(std::vector<unsigned int> &parent, unsigned int v)
+    {
+      while (parent[v] != v)
+        v = parent[v] = parent[parent[v]];
+      return v;
+    }
+  } // namespace
+
+  void Contact::find_connected_pieces()
+  {
+    piece_.resize(model_.surface().n_vertices());
+    std::iota(piece_.begin(), piece_.end(), 0u);
+    for (const auto &t : shell_triangles_)
+      for (unsigned int i = 1; i < 3; ++i)
+        piece_[root_of(piece_, t[i])] = root_of(piece_, t[0]);
+    for (unsigned int v = 0; v < piece_.size(); ++v)
+      piece_[v] = root_of(piece_, v);
+  }
+
+  double Contact::self_offset(unsigned int v, unsigned int t) const
+  {
+    return 0.5 * (model_.vertex_thickness(v) + shell_triangle_thickness_[t]);
+  }
+
+  bool Contact::self_pair_allowed(unsigned int v, unsigned int t) const
+  {
+    const auto &corners = shell_triangles_[t];
+    if (v == corners[0] || v == corners[1] || v == corners[2])
+      return false;
+    if (piece_[v] != piece_[corners[0]])
+      return true;
+    const auto  &X = model_.surface().get_vertices();
+    const double reference =
+        std::sqrt(point_triangle_distance(X[v], X[corners[0]], X[corners[1]],
+                                          X[corners[2]], false)
+                      .value);
+    return reference >= parameters_.self_exclusion * self_offset(v, t);
+  }
+
+  const std::vector<Point<3>> &Contact::other_side(const Pair &pair) const
+  {
+    return pair.self ? positions_ : current_[pair.obstacle];
+  }
+
+  double Contact::self_ccd_fraction(const std::vector<Point<3>>     &x,
+                                    const std::vector<Tensor<1, 3>> &dx,
+                                    const Tree &swept_shell_tree) const
+  {
+    double fraction = 1;
+    Hits   hits;
+    for (const unsigned v : shell_vertices_)
+    {
+      hits.clear();
+      swept_shell_tree.query(bgi::intersects(BoundingBox<3>(
+                                 std::vector<Point<3>>{x[v], x[v] + dx[v]})),
+                             std::back_inserter(hits));
+      for (const auto &hit : hits)
+      {
+        if (!self_pair_allowed(v, hit.second))
+          continue;
+        const auto &t = shell_triangles_[hit.second];
+        fraction      = std::min(fraction,
+                                 additive_ccd(PrimitivePair::point_triangle,
+                                              {x[v], x[t[0]], x[t[1]], x[t[2]]},
+                                              {dx[v], dx[t[0]], dx[t[1]], dx[t[2]]},
+                                              self_offset(v, hit.second)));
+      }
+    }
+    return fraction;
+  }
+
+  void
+  Contact::self_couplings(const model::ShellState                  &state,
+                          std::vector<std::array<unsigned int, 2>> &pairs) const
+  {
+    if (!parameters_.self_contact)
+      return;
+    // Pairs that may come within reach during the step: a margin of the
+    // largest thickness. A pair that comes closer still keeps its exact
+    // force; only its coupling to the other side drops out of the tangent.
+    const std::vector<Point<3>> x = shell_positions(state);
+    const Tree                  tree =
+        shell_triangle_tree(x, nullptr, max_reach() + largest_thickness_);
+    Hits hits;
+    for (const unsigned v : shell_vertices_)
+    {
+      hits.clear();
+      tree.query(bgi::intersects(BoundingBox<3>({x[v], x[v]})),
+                 std::back_inserter(hits));
+      for (const auto &hit : hits)
+        if (self_pair_allowed(v, hit.second))
+          for (const unsigned w : shell_triangles_[hit.second])
+            pairs.push_back({v, w});
+    }
+  }
+} // namespace coshell::contact
