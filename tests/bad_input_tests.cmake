@@ -37,6 +37,8 @@ coshell_bad_input_test(malformed_gmsh_parameter "Mesh/Gmsh parameters: 'haptic w
   --set "Mesh/Gmsh parameters=haptic width = 1")
 coshell_bad_input_test(edge_force_unknown_boundary "Loads/Edge forces: boundary id 7, which the mesh does not have"
   ${plate} --set "Loads/Edge forces=7: 1 0 0")
+coshell_bad_input_test(interactive_without_dynamics "--interactive drives dynamic stages, and this scene has none"
+  ${plate} --interactive)
 coshell_bad_input_test(zero_youngs_modulus "Material: Young's modulus E = 0 must be positive"
   ${plate} --set "Material/Young's modulus=0")
 coshell_bad_input_test(poisson_ratio_too_large "Poisson's ratio = 0.5 is outside"

@@ -46,3 +46,17 @@ add_test(NAME iol.figures
                  --output ${CMAKE_CURRENT_BINARY_DIR}/output/iol.figures
                  --figures ${CMAKE_CURRENT_BINARY_DIR}/output/iol.figures/png)
 set_tests_properties(iol.figures PROPERTIES LABELS iol)
+
+# Interactive coupling: a scripted session (targets 0.1, a comment, a bad
+# line, 0.3, a target in the past, quit, and a line after quit) against
+# the compression scene: one 'step' line per step (time, the force on
+# each of the 2 clamps, the centroid, the real-time factor), 'done' per
+# target, an error line for the bad one, nothing else on stdout, and the
+# run ends at 0.3 s.
+add_test(NAME iol.interactive_protocol
+         COMMAND ${COSHELL_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_interactive.py
+                 --coshell $<TARGET_FILE:coshell>
+                 --prm ${COSHELL_PRM}/iol/compression_iso11979.prm
+                 --output ${CMAKE_CURRENT_BINARY_DIR}/output/iol.interactive_protocol
+                 --obstacles 2)
+set_tests_properties(iol.interactive_protocol PROPERTIES LABELS iol)

@@ -13,7 +13,7 @@ namespace
 {
   const char *usage =
       "usage: coshell FILE.prm [--set \"Section/Name=value\" ...] "
-      "[--output DIR]\n"
+      "[--output DIR] [--interactive]\n"
       "       coshell --print-parameters [FILE.prm]\n"
       "       coshell --help\n"
       "\n"
@@ -26,6 +26,11 @@ namespace
       "                        documentation, in .prm form (with FILE.prm: "
       "its\n"
       "                        values)\n"
+      "  --interactive         dynamic stages advance to the times read "
+      "from\n"
+      "                        standard input, one per line; one line per "
+      "step\n"
+      "                        on standard output (see the README)\n"
       "  --help                this text\n"
       "\n"
       "Exit status: 0 on success, 1 on bad input or a failed solve, 2 on a "
@@ -38,6 +43,7 @@ namespace
     std::string              output_directory;
     bool                     help             = false;
     bool                     print_parameters = false;
+    bool                     interactive      = false;
   };
 
   CommandLine parse_command_line(int argc, char **argv)
@@ -49,6 +55,8 @@ namespace
       const bool        has_value = i + 1 < argc;
       if (arg == "--help" || arg == "-h")
         line.help = true;
+      else if (arg == "--interactive")
+        line.interactive = true;
       else if (arg == "--print-parameters")
         line.print_parameters = true;
       else if (arg == "--set" && has_value)
@@ -101,8 +109,13 @@ int main(int argc, char **argv)
     const std::string output = line.output_directory.empty()
                                    ? scene.output().directory
                                    : line.output_directory;
-    scene.run(output, std::cout);
-    std::cout << "results written to " << output << "\n";
+    // Interactive runs keep standard output for the protocol; the log
+    // goes to standard error.
+    std::ostream &log = line.interactive ? std::cerr : std::cout;
+    if (line.interactive)
+      scene.drive_interactively(std::cin, std::cout);
+    scene.run(output, log);
+    log << "results written to " << output << "\n";
   }
   catch (const std::exception &error)
   {

@@ -1,5 +1,6 @@
 #include <coshell/driver/scene.h>
 #include <coshell/io/csv_file.h>
+#include <coshell/io/expressions.h>
 #include <coshell/io/results.h>
 #include <coshell/model/external_loads.h>
 #include <coshell/model/inertia.h>
@@ -565,6 +566,7 @@ namespace coshell::driver
     inertia->measures(state, &out.damping_force);
     Vector<double> damping_force(model.n_dofs());
 
+    const auto wall    = std::chrono::steady_clock::now();
     const auto on_step = [&](const solvers::TimeIntegration::StepRecord &record)
     {
       const unsigned int step = ++out.step;
@@ -601,6 +603,13 @@ namespace coshell::driver
       record_contact(out, step, record.time);
       if (output_.wants_step(step))
         write_step(model, state, out, directory, step, record.time);
+      // Interactive runs count only the time spent computing, not the
+      // time spent waiting for the next target.
+      if (replies_)
+        reply_step(
+            problem, out, record.time,
+            (record.time - start_time) /
+                std::max(computing_s_ + seconds_since(advance_started_), 1e-9));
     };
     const auto on_iteration =
         [&](unsigned int step, const solvers::NewtonIteration &record)
@@ -609,16 +618,113 @@ namespace coshell::driver
                        problem.load_factor(), record.relative_residual,
                        record.correction_norm, record.relative_energy});
     };
-    const auto   wall            = std::chrono::steady_clock::now();
     const double solver_before   = linear_solver_.seconds();
     const double assembly_before = problem.assembly_seconds();
-    time_integration_.run(problem, linear_solver_, path_following_.newton(),
-                          start_time, start_time + stage.duration, out.step,
-                          on_step, on_iteration, log);
-    result.simulated_time_s += stage.duration;
+    const double reached =
+        advance_dynamic_stage(problem, start_time, start_time + stage.duration,
+                              out.step, on_step, on_iteration, log);
+    result.simulated_time_s += reached - start_time;
     result.dynamic_wall_time_s += seconds_since(wall);
     result.dynamic_assembly_s += problem.assembly_seconds() - assembly_before;
     result.dynamic_linear_solver_s += linear_solver_.seconds() - solver_before;
+  }
+
+  void Scene::drive_interactively(std::istream &commands, std::ostream &replies)
+  {
+    if (!has_dynamic_stage())
+      throw std::invalid_argument(
+          "--interactive drives dynamic stages, and this scene has none "
+          "(Analysis/Type = dynamic, or a Stage k with Analysis type = "
+          "dynamic)");
+    commands_ = &commands;
+    replies_  = &replies;
+  }
+
+  namespace
+  {
+    /// The next target time of the interactive protocol, or nothing at
+    /// "quit" or the end of the input. Blank and '#' lines are skipped;
+    /// a line that is not one number is answered with an error line.
+    std::optional<double> next_target(std::istream &commands,
+                                      std::ostream &replies)
+    {
+      std::string line;
+      while (std::getline(commands, line))
+      {
+        line = Utilities::trim(line);
+        if (line.empty() || line[0] == '#')
+          continue;
+        if (line == "quit")
+          return std::nullopt;
+        if (const auto time = io::as_number(line))
+          return *time;
+        replies << "error cannot read '" << line << "' as a time in s"
+                << std::endl;
+      }
+      return std::nullopt;
+    }
+  } // namespace
+
+  double Scene::advance_dynamic_stage(
+      model::ShellProblem                               &problem,
+      double                                             start,
+      double                                             end,
+      unsigned int                                      &step,
+      const solvers::TimeIntegration::StepObserver      &on_step,
+      const solvers::TimeIntegration::IterationObserver &on_iteration,
+      std::ostream                                      &log)
+  {
+    computing_s_       = 0;
+    const auto advance = [&](double from, double to)
+    {
+      advance_started_ = std::chrono::steady_clock::now();
+      time_integration_.run(problem, linear_solver_, path_following_.newton(),
+                            from, to, step, on_step, on_iteration, log);
+      computing_s_ += seconds_since(advance_started_);
+    };
+    if (!commands_)
+    {
+      advance(start, end);
+      return end;
+    }
+    double now = start;
+    while (now < end)
+    {
+      const auto target = next_target(*commands_, *replies_);
+      if (!target)
+        break;
+      const double to = std::min(*target, end);
+      if (to > now)
+        advance(now, to);
+      now = std::max(now, to);
+      *replies_ << "done " << now << std::endl;
+    }
+    return now;
+  }
+
+  void Scene::reply_step(const model::ShellProblem &problem,
+                         const StagedOutput        &out,
+                         double                     time,
+                         double                     real_time_factor) const
+  {
+    auto &reply = *replies_;
+    reply << "step " << out.step << ' ' << time;
+    if (out.contact)
+      for (const auto &load : out.contact->obstacle_loads())
+        reply << ' ' << load.force.norm();
+    const auto &model = problem.model();
+    Point<3>    centroid;
+    unsigned    n = 0;
+    for (unsigned int v = 0; v < model.surface().n_vertices(); ++v)
+      if (model.vertex_is_used(v))
+      {
+        centroid += model.surface().get_vertices()[v];
+        for (unsigned int d = 0; d < 3; ++d)
+          centroid[d] += problem.state().values()[model.vertex_dofs(v)[d]];
+        ++n;
+      }
+    centroid /= double(n);
+    reply << ' ' << centroid << ' ' << real_time_factor << std::endl;
   }
 
   void Scene::run_static_stage(const Stage         &stage,

@@ -19,7 +19,9 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <chrono>
 #include <functional>
+#include <istream>
 #include <map>
 #include <ostream>
 #include <string>
@@ -50,25 +52,36 @@ namespace coshell::driver
 
     const io::VtuOutput &output() const;
 
+    /// Interactive coupling: dynamic stages advance to the target times
+    /// read from 'commands', one per line, instead of running through,
+    /// and every step writes one line to 'replies' (protocol in the
+    /// README, "Interactive coupling").
+    void drive_interactively(std::istream &commands, std::ostream &replies);
+
   private:
-    std::string                  prm_file_;
-    mesh::MeshParameters         mesh_;
-    model::ElementParameters     element_;
-    model::BoundaryConditions    boundary_conditions_;
-    model::Loads                 loads_;
-    model::QuantitiesOfInterest  quantities_;
-    solvers::LinearSolver        linear_solver_;
-    solvers::PathFollowing       path_following_;
-    std::string                  analysis_type_ = "linear static";
-    model::PrescribedMotions     motions_;
-    Stages                       stages_;
-    model::InertiaParameters     inertia_;
-    solvers::TimeIntegration     time_integration_;
-    unsigned int                 n_modes_     = 6;
-    double                       modal_shift_ = 0;
-    contact::ContactParameters   contact_;
-    io::VtuOutput                output_;
-    std::vector<io::LevelResult> levels_;
+    std::string                 prm_file_;
+    mesh::MeshParameters        mesh_;
+    model::ElementParameters    element_;
+    model::BoundaryConditions   boundary_conditions_;
+    model::Loads                loads_;
+    model::QuantitiesOfInterest quantities_;
+    solvers::LinearSolver       linear_solver_;
+    solvers::PathFollowing      path_following_;
+    std::string                 analysis_type_ = "linear static";
+    model::PrescribedMotions    motions_;
+    Stages                      stages_;
+    model::InertiaParameters    inertia_;
+    solvers::TimeIntegration    time_integration_;
+    unsigned int                n_modes_     = 6;
+    double                      modal_shift_ = 0;
+    contact::ContactParameters  contact_;
+    std::istream               *commands_ = nullptr;
+    std::ostream               *replies_  = nullptr;
+    /// Wall time of the current dynamic stage's integration so far.
+    double                                computing_s_ = 0;
+    std::chrono::steady_clock::time_point advance_started_;
+    io::VtuOutput                         output_;
+    std::vector<io::LevelResult>          levels_;
 
     io::Json        run_level(unsigned int       level,
                               const std::string &directory,
@@ -92,20 +105,39 @@ namespace coshell::driver
     /// Appends the step's rows to contact_forces.csv.
     void
     record_contact(StagedOutput &out, unsigned int step, double time) const;
-    void            run_static_stage(const Stage         &stage,
-                                     model::ShellProblem &problem,
-                                     StagedOutput        &out,
-                                     io::LevelResult     &result,
-                                     const std::string   &directory,
-                                     std::ostream        &log);
-    void            run_dynamic_stage(const Stage         &stage,
-                                      model::ShellProblem &problem,
-                                      double               start_time,
-                                      StagedOutput        &out,
-                                      io::LevelResult     &result,
-                                      const std::string   &directory,
-                                      std::ostream        &log);
-    bool            has_dynamic_stage() const;
+    void run_static_stage(const Stage         &stage,
+                          model::ShellProblem &problem,
+                          StagedOutput        &out,
+                          io::LevelResult     &result,
+                          const std::string   &directory,
+                          std::ostream        &log);
+    void run_dynamic_stage(const Stage         &stage,
+                           model::ShellProblem &problem,
+                           double               start_time,
+                           StagedOutput        &out,
+                           io::LevelResult     &result,
+                           const std::string   &directory,
+                           std::ostream        &log);
+    bool has_dynamic_stage() const;
+    /// Runs the time integration of a dynamic stage from 'start' to
+    /// 'end', or, when driven interactively, to each target read until
+    /// the stage's end, "quit" or the end of the input; returns the time
+    /// reached.
+    double advance_dynamic_stage(
+        model::ShellProblem                               &problem,
+        double                                             start,
+        double                                             end,
+        unsigned int                                      &step,
+        const solvers::TimeIntegration::StepObserver      &on_step,
+        const solvers::TimeIntegration::IterationObserver &on_iteration,
+        std::ostream                                      &log);
+    /// The protocol's line for one step: time, the force on each
+    /// obstacle (N, magnitude), the shell's centroid and the real-time
+    /// factor so far.
+    void            reply_step(const model::ShellProblem &problem,
+                               const StagedOutput        &out,
+                               double                     time,
+                               double                     real_time_factor) const;
     io::LevelResult solve_modes(const model::ShellModel &model,
                                 const std::string       &directory,
                                 std::ostream            &log);
