@@ -2,6 +2,18 @@
 # tests and their references. Label iol.
 set(CHECK_HAPTIC ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_haptic.py)
 
+# coshell_iol_test(NAME CHECKER PRM checker arguments...): runs
+# tests/scripts/CHECKER on prm/iol/PRM into output/NAME, label iol.
+function(coshell_iol_test name checker prm)
+  add_test(NAME ${name}
+           COMMAND ${COSHELL_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/scripts/${checker}
+                   --coshell $<TARGET_FILE:coshell>
+                   --prm ${COSHELL_PRM}/iol/${prm}
+                   --output ${CMAKE_CURRENT_BINARY_DIR}/output/${name}
+                   ${ARGN})
+  set_tests_properties(${name} PROPERTIES LABELS iol)
+endfunction()
+
 # One C-loop haptic clamped at its root and pushed at its tip towards the
 # lens centre (0.01 mN, linear): tip stiffness against Castigliano's
 # curved-beam solution, 2.3843e-5 N/mm (bending E t w^3 / 12 plus axial
@@ -10,14 +22,9 @@ set(CHECK_HAPTIC ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_haptic.py)
 # CST locks in this in-plane bending: 1.54 times too stiff on the coarse
 # mesh (two triangles across the haptic), asserted above 1.4 times.
 function(coshell_haptic_test name membrane)
-  add_test(NAME ${name}
-           COMMAND ${COSHELL_PYTHON} ${CHECK_HAPTIC}
-                   --coshell $<TARGET_FILE:coshell>
-                   --prm ${COSHELL_PRM}/iol/haptic_compression.prm
-                   --output ${CMAKE_CURRENT_BINARY_DIR}/output/${name}
+  coshell_iol_test(${name} check_haptic.py haptic_compression.prm
                    --set "Element/Membrane element=${membrane}"
                    --set ${no_vtu} ${ARGN})
-  set_tests_properties(${name} PROPERTIES LABELS iol)
 endfunction()
 coshell_haptic_test(iol.haptic_compression.andes andes --rtol 0.01)
 coshell_haptic_test(iol.haptic_compression.cst cst --stiffer-than 1.4)
@@ -27,25 +34,15 @@ coshell_haptic_test(iol.haptic_compression.cst cst --stiffer-than 1.4)
 # two clamp forces balance within 1 % (quasi-static equilibrium), the
 # force grows with the compression and ends finite and positive.
 # The force curve is written to compression.csv (mN against mm).
-add_test(NAME iol.compression_iso11979
-         COMMAND ${COSHELL_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_compression.py
-                 --coshell $<TARGET_FILE:coshell>
-                 --prm ${COSHELL_PRM}/iol/compression_iso11979.prm
-                 --output ${CMAKE_CURRENT_BINARY_DIR}/output/iol.compression_iso11979
-                 --set ${no_vtu})
-set_tests_properties(iol.compression_iso11979 PROPERTIES LABELS iol)
+coshell_iol_test(iol.compression_iso11979 check_compression.py
+                 compression_iso11979.prm --set ${no_vtu})
 
 # The paper's Fig. 3 (the lens mesh; 473 triangles there, 480 here,
 # asserted within 2 %) and the compression sequence, regenerated from a
 # run with doc/scripts/render_vtu.py (headless matplotlib 3-D) into
 # build/tests/output/iol.figures/png/.
-add_test(NAME iol.figures
-         COMMAND ${COSHELL_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_iol_figures.py
-                 --coshell $<TARGET_FILE:coshell>
-                 --prm ${COSHELL_PRM}/iol/compression_iso11979.prm
-                 --output ${CMAKE_CURRENT_BINARY_DIR}/output/iol.figures
+coshell_iol_test(iol.figures check_iol_figures.py compression_iso11979.prm
                  --figures ${CMAKE_CURRENT_BINARY_DIR}/output/iol.figures/png)
-set_tests_properties(iol.figures PROPERTIES LABELS iol)
 
 # Interactive coupling: a scripted session (targets 0.1, a comment, a bad
 # line, 0.3, a target in the past, quit, and a line after quit) against
@@ -53,13 +50,8 @@ set_tests_properties(iol.figures PROPERTIES LABELS iol)
 # each of the 2 clamps, the centroid, the real-time factor), 'done' per
 # target, an error line for the bad one, nothing else on stdout, and the
 # run ends at 0.3 s.
-add_test(NAME iol.interactive_protocol
-         COMMAND ${COSHELL_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_interactive.py
-                 --coshell $<TARGET_FILE:coshell>
-                 --prm ${COSHELL_PRM}/iol/compression_iso11979.prm
-                 --output ${CMAKE_CURRENT_BINARY_DIR}/output/iol.interactive_protocol
-                 --obstacles 2)
-set_tests_properties(iol.interactive_protocol PROPERTIES LABELS iol)
+coshell_iol_test(iol.interactive_protocol check_interactive.py
+                 compression_iso11979.prm --obstacles 2)
 
 # Co-rotational kinematics tend to the linear ones as the load vanishes:
 # the haptic at 1e-4 mN (load factor 0.01 of the prm's 0.01 mN), level 1,

@@ -79,7 +79,7 @@ namespace coshell::contact
     loads_.resize(n);
     vertex_gap_.assign(vertices.size(), infinity);
     if (parameters_.self_contact)
-      find_connected_pieces();
+      exclude_reference_neighbours();
     vertex_force_.reinit(model.n_dofs());
     smallest_gap_ = infinity;
   }
@@ -404,13 +404,14 @@ namespace coshell::contact
         continue;
       std::ostringstream message;
       if (pair.self)
+      {
         message << "the shell starts in contact with itself (Contact/Self "
                    "contact): shell vertex "
                 << pair.shell << " at " << p[0] << " is at distance "
                 << distance << " from shell triangle " << pair.other
                 << ", not more than their mean thickness " << offset(pair);
-      if (pair.self)
         throw std::runtime_error(message.str());
+      }
       const Obstacle &obstacle = parameters_.obstacles[pair.obstacle];
       message << "the shell starts inside obstacle '" << obstacle.name
               << "' (Contact/Obstacle " << pair.obstacle + 1 << "): "

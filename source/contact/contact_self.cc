@@ -8,6 +8,7 @@
 #include <coshell/contact/contact.h>
 #include <coshell/contact/distances.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numeric>
 
@@ -28,15 +29,37 @@ namespace coshell::contact
     }
   } // namespace
 
-  void Contact::find_connected_pieces()
+  void Contact::exclude_reference_neighbours()
   {
-    piece_.resize(model_.surface().n_vertices());
-    std::iota(piece_.begin(), piece_.end(), 0u);
+    // Connected pieces by union-find over the triangles' corners.
+    std::vector<unsigned int> piece(model_.surface().n_vertices());
+    std::iota(piece.begin(), piece.end(), 0u);
     for (const auto &t : shell_triangles_)
       for (unsigned int i = 1; i < 3; ++i)
-        piece_[root_of(piece_, t[i])] = root_of(piece_, t[0]);
-    for (unsigned int v = 0; v < piece_.size(); ++v)
-      piece_[v] = root_of(piece_, v);
+        piece[root_of(piece, t[i])] = root_of(piece, t[0]);
+    const auto &X    = model_.surface().get_vertices();
+    const Tree  tree = shell_triangle_tree(
+         X, nullptr, parameters_.self_exclusion * largest_thickness_);
+    excluded_.assign(X.size(), {});
+    Hits hits;
+    for (const unsigned v : shell_vertices_)
+    {
+      hits.clear();
+      tree.query(bgi::intersects(BoundingBox<3>({X[v], X[v]})),
+                 std::back_inserter(hits));
+      for (const auto &hit : hits)
+      {
+        const auto &t = shell_triangles_[hit.second];
+        if (root_of(piece, v) != root_of(piece, t[0]))
+          continue;
+        const double reference = std::sqrt(
+            point_triangle_distance(X[v], X[t[0]], X[t[1]], X[t[2]], false)
+                .value);
+        if (reference < parameters_.self_exclusion * self_offset(v, hit.second))
+          excluded_[v].push_back(hit.second);
+      }
+      std::sort(excluded_[v].begin(), excluded_[v].end());
+    }
   }
 
   double Contact::self_offset(unsigned int v, unsigned int t) const
@@ -46,17 +69,8 @@ namespace coshell::contact
 
   bool Contact::self_pair_allowed(unsigned int v, unsigned int t) const
   {
-    const auto &corners = shell_triangles_[t];
-    if (v == corners[0] || v == corners[1] || v == corners[2])
-      return false;
-    if (piece_[v] != piece_[corners[0]])
-      return true;
-    const auto  &X = model_.surface().get_vertices();
-    const double reference =
-        std::sqrt(point_triangle_distance(X[v], X[corners[0]], X[corners[1]],
-                                          X[corners[2]], false)
-                      .value);
-    return reference >= parameters_.self_exclusion * self_offset(v, t);
+    // A triangle's own corners are within zero of it: always excluded.
+    return !std::binary_search(excluded_[v].begin(), excluded_[v].end(), t);
   }
 
   const std::vector<Point<3>> &Contact::other_side(const Pair &pair) const

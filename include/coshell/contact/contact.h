@@ -198,15 +198,18 @@ namespace coshell::contact
     /// Whether v and t may form a self-contact pair: v is not a corner of
     /// t, and they are on different connected pieces or were at least
     /// Self contact exclusion times their offset apart in the reference
-    /// configuration.
+    /// configuration (excluded_).
     bool self_pair_allowed(unsigned int v, unsigned int t) const;
-    /// Labels each shell vertex with its connected piece.
-    void find_connected_pieces();
+    /// Finds, once, the triangles each shell vertex must not pair with
+    /// beyond its own: those of its connected piece that were nearer
+    /// than the exclusion distance in the reference configuration.
+    void exclude_reference_neighbours();
     /// The positions the pair's other side takes its points from.
     const std::vector<dealii::Point<3>> &other_side(const Pair &pair) const;
-    std::vector<unsigned int>            piece_; ///< per shell vertex
-    unsigned int                         self_active_pairs_ = 0;
-    double                               reach(unsigned int obstacle) const;
+    /// Per shell vertex, the sorted triangles it does not pair with.
+    std::vector<std::vector<unsigned int>> excluded_;
+    unsigned int                           self_active_pairs_ = 0;
+    double                                 reach(unsigned int obstacle) const;
     std::vector<dealii::Point<3>>
            shell_positions(const model::ShellState &state) const;
     void   rebuild_tree(unsigned int obstacle);
