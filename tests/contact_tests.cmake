@@ -88,6 +88,42 @@ coshell_contact_test(contact.funnel.large_steps ${funnel}
   --set "Time integration/Maximum time step=0.05" --gap-nonnegative
   --summary smallest_gap 0 1)
 
+# Strip wrapped on a cylinder (statics): an end moment curls a clamped
+# strip (EI = 1, h = 0.2) round a rigid cylinder (R = 2). The elastica
+# keeps it clear below M* = EI / (R + h/2) and puts it on the cylinder at
+# M* (bracketed by load steps 0.5 % apart, asserted within 1 %; without
+# the thickness offset M* would be 5 % higher); there the centre line
+# lies on the radius R + h/2 within 1 %. At 1.1 M* the tip bears on the
+# cylinder with the force of an inextensible clamped arc held at its tip
+# (Castigliano, 4 (M - M*) / (pi r)) within 2 %.
+add_test(NAME contact.strip_on_cylinder
+         COMMAND ${COSHELL_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_wrap.py
+                 --coshell $<TARGET_FILE:coshell>
+                 --prm ${COSHELL_PRM}/contact/strip_on_cylinder.prm
+                 --output ${CMAKE_CURRENT_BINARY_DIR}/output/contact.strip_on_cylinder
+                 --radius 2 --thickness 0.2 --start-gap 0.002 --length 3.3
+                 --bending-stiffness 1 --moment-max 0.523809524)
+set_tests_properties(contact.strip_on_cylinder PROPERTIES LABELS contact)
+
+# Hard cases on a very thin strip (h / L = 1e-3) lying on a plane under a
+# pressure q = 1e-3 (resultant 0.01 N). Squeezed: a rod presses its
+# middle until the room between rod and plane is h + 0.6 d (rod force
+# 10.6 N, a thousand times the pressure's). Grazing: the rod comes down to
+# a room of h + 1.5 d, inside both barrier layers, and slides 8 mm along
+# the strip. Both converge with no iterate interpenetrating, and the
+# massless strip passes everything to the plane: the obstacles' forces
+# add up to the pressure's resultant within 1e-6. (Squeezed to h + 0.6 d
+# and then slid, Newton stalls at a relative residual of 1e-7 and the
+# step size collapses, with a clear error: see doc/validation.md.)
+set(thin_strip contact/thin_strip_squeeze.prm)
+coshell_contact_test(contact.hard.thin_strip_squeezed ${thin_strip}
+  ARGS --set ${no_vtu} --reaction fz -0.01 1e-6 --gap-nonnegative
+  --force-range 2 fz 1 100)
+coshell_contact_test(contact.hard.grazing ${thin_strip}
+  ARGS --set ${no_vtu} --set "Nonlinear solver/Load steps=50"
+  --set "Contact/Obstacle 2/Translation=1 + 8*max(0, (t - 0.2)/0.8)$<SEMICOLON> 0$<SEMICOLON> 0.52 - 0.014*min(1, t/0.2)"
+  --reaction fz -0.01 1e-6 --gap-nonnegative --gap-below 0.001)
+
 # Bad input names the obstacle and what is wrong with it.
 set(plane_scene ${COSHELL_PRM}/contact/plate_on_plane.prm)
 coshell_bad_input_test(contact_missing_obstacle_mesh
@@ -123,5 +159,24 @@ coshell_scene_test(contact.self.plate_on_plate contact/plate_on_plate.prm
        --value center_deflection -0.000126532 1e-3)
 coshell_contact_test(contact.self.plate_on_plate.gap contact/plate_on_plate.prm
   ARGS --set ${no_vtu} --gap-nonnegative --gap-below 0.001)
+# Self contact roll-up: an end moment winds a strip (EI = 1, h = 0.05,
+# rolling length 6) past a full turn onto its own clamped tail. Stage 1
+# (statics, M = 0.975 x the full-turn moment): the tip rests on the tail;
+# the tail's force on it and its position match an elastica with a
+# vertical tip force (shooting in the checker) within 2 % and 0.2 % of
+# the length (measured 0.51 %, 0.012 %). Stage 2 (damped dynamics through
+# the snap where the tip slides past the clamp line, to 1.25 x): at rest
+# the strip turns through more than a full turn, both layers carry
+# contact force and it sums to zero; the gap stays positive at every
+# iterate.
+add_test(NAME contact.self.rollup
+         COMMAND ${COSHELL_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_rollup.py
+                 --coshell $<TARGET_FILE:coshell>
+                 --prm ${COSHELL_PRM}/contact/self_contact_rollup.prm
+                 --output ${CMAKE_CURRENT_BINARY_DIR}/output/contact.self.rollup
+                 --root-x 1.5 --length 6 --thickness 0.05 --bending-stiffness 1
+                 --moment-max 1.308996939 --force-tolerance 0.02
+                 --position-tolerance 0.002)
+set_tests_properties(contact.self.rollup PROPERTIES LABELS contact)
 coshell_bad_input_test(contact_shell_starts_in_self_contact "the shell starts in contact with itself .Contact/Self contact.: shell vertex"
   ${COSHELL_PRM}/contact/plate_on_plate.prm --set "Mesh/Gmsh parameters=upper_height = 0.05")

@@ -7,12 +7,18 @@
   u0 + v0 t + a t^2/2 with a = g (sin theta - mu cos theta), sliding,
   sticking and frictionless;
 - funnel.png: the plunger force and the smallest gap over time (every
-  iterate), barrier.
+  iterate), barrier;
+- strip_on_cylinder.png: the cylinder's force on the wrapped strip's tip
+  against the end moment, with the curved-beam reference;
+- self_contact_rollup.png: the strip rolled onto itself (side views of
+  the roll-up, coloured by contact pressure).
 
-  /usr/bin/python3 doc/scripts/contact_validation_plots.py --coshell build/coshell
+  /usr/bin/python3 doc/scripts/contact_validation_plots.py --coshell build/coshell \
+      [--only strip_on_cylinder self_contact_rollup ...]
 """
 import argparse
 import csv
+import math
 import os
 import subprocess
 import sys
@@ -21,6 +27,7 @@ import tempfile
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from doc_common import ROOT, finish_plot, machine_and_commit  # noqa: E402
 
+import render_vtu  # noqa: E402
 import matplotlib  # noqa: E402
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
@@ -101,17 +108,64 @@ def funnel(coshell, work, commit):
                 os.path.join(OUT, "funnel.png"))
 
 
+def strip_on_cylinder(coshell, work, commit):
+    """The scene of prm/contact/strip_on_cylinder.prm: EI = 1, R = 2,
+    h = 0.2, start gap 0.002, L = 3.3, M_max = 1.1 EI / (R + h/2)."""
+    out = os.path.join(work, "wrap")
+    run(coshell, "strip_on_cylinder.prm", out)
+    wrap_moment, moment_max = 1 / 2.1, 1.1 / 2.1
+    radius = 2.102
+    angle = 3.3 / radius
+    steps = rows(os.path.join(out, "load_displacement.csv"))
+    forces = rows(os.path.join(out, "contact_forces.csv"))
+    moments = [float(x["load_factor"]) * moment_max for x in steps]
+    measured = [(float(x["fx"]) ** 2 + float(x["fz"]) ** 2) ** 0.5 for x in forces]
+    beam = [max(m - 1 / radius, 0) * (1 - math.cos(angle))
+            / (radius * (angle / 2 - math.sin(2 * angle) / 4)) for m in moments]
+    figure, axes = plt.subplots(figsize=(7, 4))
+    axes.plot([m / wrap_moment for m in moments], [1e3 * f for f in measured],
+              "o", ms=3, label="CoShell: the cylinder's force on the strip")
+    axes.plot([m / wrap_moment for m in moments], [1e3 * f for f in beam], "-",
+              lw=1, label="clamped arc held at its tip (Castigliano)")
+    axes.axvline(1, color="k", lw=0.8, label="M* = EI / (R + h/2)")
+    finish_plot(figure, axes, "end moment M / M*", "force (mN)",
+                f"Strip wrapped on a cylinder ({commit})",
+                os.path.join(OUT, "strip_on_cylinder.png"))
+
+
+def self_contact_rollup(coshell, work, commit):
+    out = os.path.join(work, "rollup")
+    command = [coshell, os.path.join(ROOT, "prm", "contact",
+                                     "self_contact_rollup.prm"), "--output", out]
+    subprocess.run(command, check=True, stdout=subprocess.DEVNULL)
+    render = os.path.join(os.path.dirname(os.path.abspath(__file__)),
+                          "render_vtu.py")
+    subprocess.run([sys.executable, render, "--pvd",
+                    os.path.join(out, "solution.pvd"), "--times", "0.5", "1",
+                    "1.2", "2.5", "--out", os.path.join(work, "rollup-frame"),
+                    "--montage", os.path.join(OUT, "self_contact_rollup.png"),
+                    "--view", "0", "-90", "--color-by", "contact_pressure",
+                    "--title", f"Strip rolled onto itself ({commit})"],
+                   check=True, stdout=subprocess.DEVNULL)
+
+
+PLOTS = {"plate_on_plane": plate_on_plane, "incline": incline,
+         "funnel": funnel, "strip_on_cylinder": strip_on_cylinder,
+         "self_contact_rollup": self_contact_rollup}
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--coshell", required=True)
+    parser.add_argument("--only", nargs="+", choices=sorted(PLOTS),
+                        default=sorted(PLOTS))
     args = parser.parse_args()
     coshell = os.path.abspath(args.coshell)
     _, commit = machine_and_commit()
     os.makedirs(OUT, exist_ok=True)
     with tempfile.TemporaryDirectory() as work:
-        plate_on_plane(coshell, work, commit)
-        incline(coshell, work, commit)
-        funnel(coshell, work, commit)
+        for name in args.only:
+            PLOTS[name](coshell, work, commit)
 
 
 if __name__ == "__main__":

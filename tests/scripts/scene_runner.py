@@ -1,5 +1,6 @@
 """Runs coshell on a scene into a fresh output directory (shared by the
 test checkers)."""
+import csv
 import os
 import shutil
 import subprocess
@@ -36,3 +37,31 @@ def exit_with(failures):
     for failure in failures:
         print("FAIL: " + failure)
     sys.exit(1 if failures else 0)
+
+
+def read_rows(path):
+    """The rows of a CSV file as dictionaries."""
+    with open(path) as f:
+        return list(csv.DictReader(f))
+
+
+def add_strip_arguments(parser):
+    """The strip of the contact wrap and roll-up checkers: its length
+    (the loaded part), thickness, bending stiffness EI and largest end
+    moment (load factor 1)."""
+    for name in ("--length", "--thickness", "--bending-stiffness",
+                 "--moment-max"):
+        parser.add_argument(name, type=float, required=True)
+
+
+class Checks:
+    """Prints 'ok'/'FAIL' per check and collects the failures for
+    exit_with()."""
+
+    def __init__(self):
+        self.failures = []
+
+    def __call__(self, what, ok):
+        print(("ok   " if ok else "FAIL ") + what)
+        if not ok:
+            self.failures.append(what)
