@@ -124,6 +124,21 @@ coshell_contact_test(contact.hard.grazing ${thin_strip}
   --set "Contact/Obstacle 2/Translation=1 + 8*max(0, (t - 0.2)/0.8)$<SEMICOLON> 0$<SEMICOLON> 0.52 - 0.014*min(1, t/0.2)"
   --reaction fz -0.01 1e-6 --gap-nonnegative --gap-below 0.001)
 
+# Hard case for the guarantee: a rigid knife whose straight edge crosses a
+# coarse plate between its vertices (knife vertices beyond the plate),
+# pushed 0.38 down. With edge-edge pairs the edge stays at least h/2 =
+# 0.05 above the deformed mid-surface along its whole length (measured
+# 0.059, vertically) and carries the plate's push. Without them nothing
+# sees the edge: it passes through the plate with no force at all
+# (clearance -0.3), the hole the edge-edge pairs close; that run is
+# asserted too, so the clearance check is known to bite.
+set(knife contact/knife_on_plate.prm)
+coshell_contact_test(contact.hard.knife_edge_edge ${knife}
+  ARGS --gap-nonnegative --edge-clearance 0.05 1 --force-range 1 fz 1 10000)
+coshell_contact_test(contact.hard.knife_without_edge_pairs ${knife}
+  ARGS --set "Contact/Edge-edge pairs=false" --edge-clearance -1 0
+  --force-range 1 fz 0 0)
+
 # Bad input names the obstacle and what is wrong with it.
 set(plane_scene ${COSHELL_PRM}/contact/plate_on_plane.prm)
 coshell_bad_input_test(contact_missing_obstacle_mesh

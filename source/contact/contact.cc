@@ -80,6 +80,7 @@ namespace coshell::contact
     vertex_gap_.assign(vertices.size(), infinity);
     if (parameters_.self_contact)
       exclude_reference_neighbours();
+    build_edges();
     vertex_force_.reinit(model.n_dofs());
     smallest_gap_ = infinity;
   }
@@ -96,6 +97,8 @@ namespace coshell::contact
 
   double Contact::offset(const Pair &pair) const
   {
+    if (pair.edge_edge)
+      return edge_offset(pair.obstacle, pair.shell);
     return pair.self
                ? self_offset(pair.shell, pair.other)
                : offset(pair.obstacle, pair.shell_vertex_side, pair.shell);
@@ -271,6 +274,9 @@ namespace coshell::contact
                                             offset(o, false, hit.second)));
       }
     }
+    if (parameters_.edge_edge_pairs)
+      fraction =
+          std::min(fraction, edge_ccd_fraction(x, dx, obstacle_tree, o, dX));
     return fraction;
   }
 
@@ -398,8 +404,7 @@ namespace coshell::contact
     for (const Pair &pair : pairs_)
     {
       const auto   p        = pair_points(pair, positions_, other_side(pair));
-      const double distance = std::sqrt(
-          point_triangle_distance(p[0], p[1], p[2], p[3], false).value);
+      const double distance = std::sqrt(pair_distance(pair, p, false).value);
       if (distance > offset(pair))
         continue;
       std::ostringstream message;
@@ -415,7 +420,12 @@ namespace coshell::contact
       const Obstacle &obstacle = parameters_.obstacles[pair.obstacle];
       message << "the shell starts inside obstacle '" << obstacle.name
               << "' (Contact/Obstacle " << pair.obstacle + 1 << "): "
-              << (pair.shell_vertex_side
+              << (pair.edge_edge
+                      ? "the edge of shell vertices " +
+                            std::to_string(shell_edges_[pair.shell][0]) +
+                            " and " +
+                            std::to_string(shell_edges_[pair.shell][1])
+                  : pair.shell_vertex_side
                       ? "shell vertex " + std::to_string(pair.shell)
                       : "shell triangle " + std::to_string(pair.shell))
               << " at " << p[pair.shell_vertex_side ? 0 : 1]

@@ -145,6 +145,8 @@ namespace coshell::contact
     {
       find_shell_vertex_pairs(o, x, selector);
       find_obstacle_vertex_pairs(o, x, shell_tree, shell_box, selector);
+      if (parameters_.edge_edge_pairs)
+        find_edge_pairs(o, x, selector);
     }
     if (parameters_.self_contact)
       find_self_pairs(x, shell_tree, selector);
@@ -289,6 +291,12 @@ namespace coshell::contact
       const auto &t = shell_triangles_[pair.other];
       return {x[pair.shell], x[t[0]], x[t[1]], x[t[2]]};
     }
+    if (pair.edge_edge)
+    {
+      const auto &e = shell_edges_[pair.shell];
+      const auto &f = obstacle_edges_[pair.obstacle][pair.other];
+      return {x[e[0]], x[e[1]], X[f[0]], X[f[1]]};
+    }
     if (pair.shell_vertex_side)
     {
       const auto &t =
@@ -301,15 +309,15 @@ namespace coshell::contact
 
   void Contact::pair_dofs(const Pair &pair, model::DofBlock &block) const
   {
-    const unsigned int n_vertices = pair.self                ? 4
-                                    : pair.shell_vertex_side ? 1
-                                                             : 3;
+    const unsigned int n_vertices =
+        (shell_coordinates(pair).last - shell_coordinates(pair).first) / 3;
     block.dofs.resize(3 * n_vertices);
     for (unsigned int i = 0; i < n_vertices; ++i)
     {
       const unsigned v =
           pair.self
               ? (i == 0 ? pair.shell : shell_triangles_[pair.other][i - 1])
+          : pair.edge_edge         ? shell_edges_[pair.shell][i]
           : pair.shell_vertex_side ? pair.shell
                                    : shell_triangles_[pair.shell][i];
       for (unsigned int c = 0; c < 3; ++c)
@@ -345,9 +353,8 @@ namespace coshell::contact
     normal_forces_.clear();
     for (const Pair &pair : pairs_)
     {
-      const auto   points = pair_points(pair, positions_, other_side(pair));
-      const auto   s = point_triangle_distance(points[0], points[1], points[2],
-                                               points[3], true);
+      const auto   points   = pair_points(pair, positions_, other_side(pair));
+      const auto   s        = pair_distance(pair, points, true);
       const double distance = std::sqrt(s.value);
       const double gap      = distance - offset(pair);
       const bool   barrier  = parameters_.method == Method::barrier;
@@ -358,32 +365,23 @@ namespace coshell::contact
         continue;
       const double weight =
           (barrier ? kappa_ : parameters_.penalty_stiffness) * pair.area;
-      Coordinates12 dg, gradient;
-      for (unsigned int i = 0; i < 12; ++i)
-      {
-        dg[i]       = s.gradient[i] / (2 * distance);
-        gradient[i] = weight * phi.first * dg[i];
-      }
-      // The shell's coordinates among the pair's 12: all of them for self
-      // contact, the point's or the triangle's against an obstacle.
-      const unsigned int first = pair.shell_vertex_side ? 0 : 3;
-      const unsigned int last  = pair.self                ? 12
-                                 : pair.shell_vertex_side ? 3
-                                                          : 12;
+      const PairEnergy energy = pair_energy(pair, points, s, weight, phi);
+      const auto       shell  = shell_coordinates(pair);
       pair_dofs(pair, block);
-      for (unsigned int i = first; i < last; ++i)
-        block.vector[i - first] = -gradient[i]; // force on the shell
+      for (unsigned int i = shell.first; i < shell.last; ++i)
+        block.vector[i - shell.first] = -energy.gradient[i]; // on the shell
       if (with_tangent)
-        pair_hessian(s, dg, distance, weight, phi, first, last, block.matrix);
-      record_pair(pair, points, gradient, gap, block);
+        pair_hessian(energy, shell, block.matrix);
+      record_pair(pair, points, energy.gradient, gap, block);
       // |d E / d distance| is the normal force of the pair, which
-      // friction will use in the next step (self contact is frictionless).
-      if (!pair.self)
+      // friction will use in the next step (self contact and edge-edge
+      // pairs are frictionless).
+      if (!pair.self && !pair.edge_edge)
         normal_forces_.push_back({pair, weight * std::abs(phi.first),
                                   s.parameters,
                                   points[0] - closest_point(points, s)});
       if (pending_ && !pair.self)
-        anticipate_obstacle(pair, s, dg, distance, weight, phi, block);
+        anticipate_obstacle(pair, energy, block);
       sink(block);
     }
     add_friction_terms(sink, with_tangent);
@@ -397,13 +395,9 @@ namespace coshell::contact
   /// move, -K_so dX (as an inhomogeneous constraint does in deal.II's
   /// step-44), so the next Newton correction already moves the shell out
   /// of the obstacle's way; the term vanishes once the obstacle is there.
-  void Contact::anticipate_obstacle(const Pair              &pair,
-                                    const SquaredDistance   &s,
-                                    const Coordinates12     &dg,
-                                    double                   distance,
-                                    double                   weight,
-                                    const ScalarDerivatives &phi,
-                                    model::DofBlock         &block) const
+  void Contact::anticipate_obstacle(const Pair       &pair,
+                                    const PairEnergy &energy,
+                                    model::DofBlock  &block) const
   {
     const unsigned int o = pair.obstacle;
     // The obstacle's points among the four, and their remaining moves.
@@ -411,49 +405,31 @@ namespace coshell::contact
     const auto                 &triangles = parameters_.obstacles[o].triangles;
     for (unsigned int k = 0; k < 4; ++k)
     {
-      const bool on_obstacle = pair.shell_vertex_side ? k > 0 : k == 0;
-      if (!on_obstacle)
+      if (!on_obstacle(pair, k))
         continue;
       const unsigned int v =
-          pair.shell_vertex_side ? triangles[pair.other][k - 1] : pair.other;
+          pair.edge_edge           ? obstacle_edges_[o][pair.other][k - 2]
+          : pair.shell_vertex_side ? triangles[pair.other][k - 1]
+                                   : pair.other;
       remaining[k] = target_[o][v] - current_[o][v];
     }
-    const unsigned int first = pair.shell_vertex_side ? 0 : 3;
-    const unsigned int last  = pair.shell_vertex_side ? 3 : 12;
-    for (unsigned int i = first; i < last; ++i)
+    const auto shell = shell_coordinates(pair);
+    for (unsigned int i = shell.first; i < shell.last; ++i)
       for (unsigned int j = 0; j < 12; ++j)
-      {
-        if (j >= first && j < last)
-          continue;
-        const double d2g = s.hessian[i][j] / (2 * distance) -
-                           s.gradient[i] * s.gradient[j] /
-                               (4 * distance * distance * distance);
-        const double k_so =
-            weight * (phi.second * dg[i] * dg[j] + phi.first * d2g);
-        block.vector[i - first] -= k_so * remaining[j / 3][j % 3];
-      }
+        if (j < shell.first || j >= shell.last)
+          block.vector[i - shell.first] -=
+              energy.hessian[i][j] * remaining[j / 3][j % 3];
   }
 
-  void Contact::pair_hessian(const SquaredDistance   &s,
-                             const Coordinates12     &dg,
-                             double                   distance,
-                             double                   weight,
-                             const ScalarDerivatives &phi,
-                             unsigned int             first,
-                             unsigned int             last,
-                             FullMatrix<double>      &matrix) const
+  void Contact::pair_hessian(const PairEnergy   &energy,
+                             ShellCoordinates    shell,
+                             FullMatrix<double> &matrix) const
   {
-    const unsigned int  n = last - first;
+    const unsigned int  n = shell.last - shell.first, first = shell.first;
     std::vector<double> h(n * n);
-    for (unsigned int i = first; i < last; ++i)
-      for (unsigned int j = first; j < last; ++j)
-      {
-        const double d2g = s.hessian[i][j] / (2 * distance) -
-                           s.gradient[i] * s.gradient[j] /
-                               (4 * distance * distance * distance);
-        h[(i - first) * n + j - first] =
-            weight * (phi.second * dg[i] * dg[j] + phi.first * d2g);
-      }
+    for (unsigned int i = 0; i < n; ++i)
+      for (unsigned int j = 0; j < n; ++j)
+        h[i * n + j] = energy.hessian[first + i][first + j];
     if (parameters_.project_tangent)
       project_to_positive_semidefinite(h, n);
     for (unsigned int i = 0; i < n; ++i)
@@ -472,8 +448,7 @@ namespace coshell::contact
   {
     for (unsigned int k = 0; k < 4 && !pair.self; ++k)
     {
-      const bool on_obstacle = pair.shell_vertex_side ? k > 0 : k == 0;
-      if (!on_obstacle)
+      if (!on_obstacle(pair, k))
         continue;
       ObstacleLoad      &load = loads_[pair.obstacle];
       const Tensor<1, 3> f(
@@ -489,11 +464,50 @@ namespace coshell::contact
       vertex_force_[block.dofs[i]] += block.vector[i];
     const auto mark = [&](unsigned v)
     { vertex_gap_[v] = std::min(vertex_gap_[v], gap); };
+    if (pair.edge_edge)
+    {
+      for (const unsigned v : shell_edges_[pair.shell])
+        mark(v);
+      return;
+    }
     if (pair.shell_vertex_side)
       mark(pair.shell);
     const unsigned int triangle = pair.self ? pair.other : pair.shell;
     if (pair.self || !pair.shell_vertex_side)
       for (const unsigned v : shell_triangles_[triangle])
         mark(v);
+  }
+} // namespace coshell::contact
+
+namespace coshell::contact
+{
+  using namespace dealii;
+  namespace bgi = boost::geometry::index;
+
+  void Contact::find_edge_pairs(unsigned int                 o,
+                                const std::vector<Point<3>> &x,
+                                PairSelector                &selector)
+  {
+    const auto               &X = current_[o];
+    std::vector<unsigned int> edges;
+    for (unsigned int e = 0; e < shell_edges_.size(); ++e)
+    {
+      const auto [a, b] = shell_edges_[e];
+      edges_near(obstacle_trees_[o], o, {x[a], x[b]}, edges);
+      for (const unsigned f : edges)
+      {
+        const auto [c, d]     = obstacle_edges_[o][f];
+        const double distance = std::sqrt(
+            segment_segment_distance(x[a], x[b], X[c], X[d], false).value);
+        if (distance >= reach(o))
+          continue;
+        Pair pair{true, o, e, f, shell_edge_area_[e]};
+        pair.edge_edge = true;
+        selector.add(
+            {{-1, long(a), long(b)}, {-1, long(c), long(d)}, distance, false},
+            pair);
+      }
+      selector.settle();
+    }
   }
 } // namespace coshell::contact

@@ -60,6 +60,12 @@ namespace coshell::contact
         "a sticking contact creeps at a fraction of it. In statics the "
         "pseudo-time of a step stands for its duration.");
     prm.declare_entry(
+        "Edge-edge pairs", "false", Patterns::Bool(),
+        "Also keep shell edges from obstacle edges (frictionless), so that "
+        "an obstacle edge cannot cut through a shell edge between their "
+        "vertices; nearly parallel edges fade out smoothly (IPC's "
+        "mollifier). false: vertex-triangle pairs only.");
+    prm.declare_entry(
         "Self contact", "false", Patterns::Bool(),
         "Also keep the shell from itself: shell vertices against shell "
         "triangles, at least the mean of their half thicknesses apart, by "
@@ -92,6 +98,7 @@ namespace coshell::contact
     stiction_velocity      = prm.get_double("Stiction velocity");
     local_minima_only      = prm.get("Pairs") == "local minima";
     self_contact           = prm.get_bool("Self contact");
+    edge_edge_pairs        = prm.get_bool("Edge-edge pairs");
     self_exclusion         = prm.get_double("Self contact exclusion");
     try
     {

@@ -23,6 +23,10 @@ outputs) against references given here.
      [--force-range OBSTACLE COMPONENT LO HI]  the last step's force on
                           obstacle OBSTACLE (1-based) lies in [LO, HI]
      [--summary KEY LO HI]  summary.json's contact[KEY] lies in [LO, HI]
+     [--edge-clearance LO HI]  at the end, the height of the obstacles'
+                          lowest edge (a knife's) over the shell's deformed
+                          mid-surface, smallest along the edge, lies in
+                          [LO, HI] (negative: the edge cut through)
      [--report FILE]      append 'test,name,value' lines of what was measured
 Prints a line per check and 'N passed, M failed'; exits 1 on a failure.
 """
@@ -72,6 +76,34 @@ def second_derivative(times, values):
     return 2 * det(c) / det(a)
 
 
+def lowest_edge_clearance(output):
+    """Smallest height of the obstacles' lowest edge (the segment between
+    their two lowest vertices, as last written) over the shell's deformed
+    mid-surface, sampled along the edge where it lies over the shell."""
+    sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "..",
+                                    "doc", "scripts"))
+    import render_vtu
+    frame = render_vtu.read_pvd(os.path.join(output, "solution.pvd"))[-1]
+    knife = render_vtu.read_vtu(frame.obstacle_files[0]).points
+    a, b = knife[knife[:, 2].argsort()[:2]]
+    shell = render_vtu.read_vtu(frame.shell_file)
+    x = shell.points + shell.point_data["displacement"]
+    clearances = []
+    for k in range(201):
+        p = a + (b - a) * k / 200
+        for c in range(len(shell.cell_starts)):
+            t = shell.cell_vertices[shell.cell_starts[c]:][:3]
+            (x0, y0), (x1, y1), (x2, y2) = x[t, 0:2]
+            det = (x1 - x0) * (y2 - y0) - (x2 - x0) * (y1 - y0)
+            u = ((p[0] - x0) * (y2 - y0) - (x2 - x0) * (p[1] - y0)) / det
+            v = ((x1 - x0) * (p[1] - y0) - (p[0] - x0) * (y1 - y0)) / det
+            if min(u, v, 1 - u - v) >= 0:
+                z = x[t[0], 2] + u * (x[t[1], 2] - x[t[0], 2]) + v * (x[t[2], 2] - x[t[0], 2])
+                clearances.append(p[2] - z)
+                break
+    return min(clearances)
+
+
 def main():
     parser = argparse.ArgumentParser()
     add_scene_arguments(parser)
@@ -86,6 +118,7 @@ def main():
     parser.add_argument("--change", nargs=4, action="append", default=[])
     parser.add_argument("--force-range", nargs=4, action="append", default=[])
     parser.add_argument("--summary", nargs=3, action="append", default=[])
+    parser.add_argument("--edge-clearance", nargs=2, type=float)
     parser.add_argument("--report")
     args = parser.parse_args()
 
@@ -171,6 +204,12 @@ def main():
         value = contact[key]
         measured.append((key, value))
         check(float(lo) <= value <= float(hi), f"{key} = {value:.6g} in [{lo}, {hi}]")
+    if args.edge_clearance:
+        clearance = lowest_edge_clearance(args.output)
+        measured.append(("edge_clearance", clearance))
+        lo, hi = args.edge_clearance
+        check(lo <= clearance <= hi, f"clearance of the obstacles' lowest edge "
+              f"over the mid-surface {clearance:.6g} in [{lo}, {hi}]")
     if args.report:
         test = os.path.basename(os.path.normpath(args.output))
         with open(args.report, "a") as f:

@@ -45,6 +45,9 @@ namespace coshell::contact
     /// Friction: tangential speed below which friction is smoothed (the
     /// creep speed of sticking), length / s.
     double stiction_velocity = 1e-3;
+    /// Shell edges against obstacle edges (with IPC's mollifier for
+    /// nearly parallel edges), frictionless.
+    bool edge_edge_pairs = false;
     /// Shell against shell (vertex-triangle pairs), frictionless.
     bool self_contact = false;
     /// Pairs of one connected piece closer than this multiple of their
@@ -139,14 +142,37 @@ namespace coshell::contact
     /// an obstacle vertex against a shell triangle.
     /// A self-contact pair is a shell vertex ('shell') against a shell
     /// triangle ('other'); shell_vertex_side is true, 'obstacle' unused.
+    /// An edge-edge pair is a shell edge ('shell', into shell_edges_)
+    /// against an obstacle edge ('other', into obstacle_edges_).
     struct Pair
     {
       bool         shell_vertex_side = true;
       unsigned int obstacle          = 0;
       unsigned int shell             = 0; ///< shell vertex or triangle index
       unsigned int other             = 0; ///< obstacle triangle or vertex
-      double       area = 0; ///< the pair's share of the shell, length^2
-      bool         self = false;
+      double       area      = 0; ///< the pair's share of the shell, length^2
+      bool         self      = false;
+      bool         edge_edge = false;
+    };
+    /// Which of a pair's 12 coordinates are the shell's: [first, last).
+    struct ShellCoordinates
+    {
+      unsigned int first, last;
+    };
+    static ShellCoordinates shell_coordinates(const Pair &pair);
+    /// Whether point k (0..3) of the pair lies on its obstacle.
+    static bool on_obstacle(const Pair &pair, unsigned int k);
+    /// The pair's distance function (point-triangle or segment-segment).
+    static SquaredDistance pair_distance(const Pair                    &pair,
+                                         const std::array<Point<3>, 4> &p,
+                                         bool derivatives);
+    /// The pair's energy weight * m * phi(gap) as a function of its 12
+    /// coordinates (m: the edge-edge mollifier, 1 otherwise): gradient
+    /// and Hessian.
+    struct PairEnergy
+    {
+      Coordinates12 gradient{};
+      Matrix12      hessian{};
     };
     /// What friction keeps of a pair from the last converged state.
     struct NormalForce
@@ -163,17 +189,25 @@ namespace coshell::contact
     const model::ShellModel &model_;
     ContactParameters        parameters_;
     /// Cell thickness of each shell triangle, and the largest one.
-    std::vector<double>                        shell_triangle_thickness_;
-    double                                     largest_thickness_ = 0;
-    double                                     kappa_ = 0, activation_ = 0;
-    std::vector<unsigned int>                  shell_vertices_; ///< used
-    std::vector<double>                        shell_vertex_area_;
-    std::vector<std::array<unsigned, 3>>       shell_triangles_;
-    std::vector<double>                        shell_triangle_area_;
-    double                                     target_time_ = -1e300;
-    std::vector<std::vector<dealii::Point<3>>> current_, saved_, target_;
-    std::vector<Tree>                          obstacle_trees_;
-    std::vector<Pair>                          pairs_;
+    std::vector<double>                  shell_triangle_thickness_;
+    double                               largest_thickness_ = 0;
+    double                               kappa_ = 0, activation_ = 0;
+    std::vector<unsigned int>            shell_vertices_; ///< used
+    std::vector<double>                  shell_vertex_area_;
+    std::vector<std::array<unsigned, 3>> shell_triangles_;
+    std::vector<double>                  shell_triangle_area_;
+    /// Shell edges (sorted vertex pairs), their share of the shell area
+    /// (a third of each triangle they bound) and squared reference length.
+    std::vector<std::array<unsigned, 2>> shell_edges_;
+    std::vector<double>                  shell_edge_area_;
+    std::vector<double>                  shell_edge_length2_;
+    /// Per obstacle: its edges, and the three edges of each triangle.
+    std::vector<std::vector<std::array<unsigned, 2>>> obstacle_edges_;
+    std::vector<std::vector<std::array<unsigned, 3>>> obstacle_triangle_edges_;
+    double                                            target_time_ = -1e300;
+    std::vector<std::vector<dealii::Point<3>>>        current_, saved_, target_;
+    std::vector<Tree>                                 obstacle_trees_;
+    std::vector<Pair>                                 pairs_;
     std::vector<dealii::Point<3>> positions_;       ///< shell, at prepare()
     std::vector<dealii::Point<3>> saved_positions_; ///< at save()
     double                        saved_time_ = 0;
@@ -184,12 +218,41 @@ namespace coshell::contact
     mutable Timing                timing_;
     bool                          pending_ = false;
 
-    /// Half the thickness of the pair's shell vertex or triangle plus the
-    /// obstacle's offset: the distance the pair must keep.
+    /// Half the thickness of the pair's shell vertex, triangle or edge
+    /// plus the obstacle's offset: the distance the pair must keep.
     double offset(const Pair &pair) const;
-    double offset(unsigned int obstacle,
-                  bool         shell_vertex_side,
-                  unsigned int shell) const;
+    /// The same for shell edge e (the mean of its vertices' offsets).
+    double edge_offset(unsigned int obstacle, unsigned int e) const;
+    /// Lists the shell's and the obstacles' edges (constructor).
+    void build_edges();
+    class PairSelector;
+    /// Shell edges against the edges of obstacle o's triangles within
+    /// reach (one pair per two edges).
+    void find_edge_pairs(unsigned int                         o,
+                         const std::vector<dealii::Point<3>> &x,
+                         PairSelector                        &selector);
+    /// The edges of obstacle o's triangles in 'tree' whose boxes meet the
+    /// box of 'corners' (sorted, each once).
+    void edges_near(const Tree                          &tree,
+                    unsigned int                         o,
+                    const std::vector<dealii::Point<3>> &corners,
+                    std::vector<unsigned int>           &edges) const;
+    /// Largest fraction of the motion that keeps every shell edge apart
+    /// from the edges of the obstacle triangles in 'obstacle_tree'.
+    double edge_ccd_fraction(const std::vector<dealii::Point<3>>     &x,
+                             const std::vector<dealii::Tensor<1, 3>> *dx,
+                             const Tree  &obstacle_tree,
+                             unsigned int o,
+                             const std::vector<dealii::Tensor<1, 3>> *dX) const;
+    /// weight * m * phi and its derivatives for a pair at 'points'.
+    PairEnergy pair_energy(const Pair                    &pair,
+                           const std::array<Point<3>, 4> &points,
+                           const SquaredDistance         &s,
+                           double                         weight,
+                           const ScalarDerivatives       &phi) const;
+    double     offset(unsigned int obstacle,
+                      bool         shell_vertex_side,
+                      unsigned int shell) const;
     /// The largest offset of any pair of this obstacle.
     double largest_offset(unsigned int obstacle) const;
     /// Self contact: the distance shell vertex v and shell triangle t
@@ -230,27 +293,17 @@ namespace coshell::contact
                       bool               with_tangent,
                       model::DofBlock   &block);
     void pair_dofs(const Pair &pair, model::DofBlock &block) const;
-    void pair_hessian(const SquaredDistance      &s,
-                      const Coordinates12        &dg,
-                      double                      distance,
-                      double                      weight,
-                      const ScalarDerivatives    &phi,
-                      unsigned int                first,
-                      unsigned int                last,
+    void pair_hessian(const PairEnergy           &energy,
+                      ShellCoordinates            shell,
                       dealii::FullMatrix<double> &matrix) const;
-    void anticipate_obstacle(const Pair              &pair,
-                             const SquaredDistance   &s,
-                             const Coordinates12     &dg,
-                             double                   distance,
-                             double                   weight,
-                             const ScalarDerivatives &phi,
-                             model::DofBlock         &block) const;
+    void anticipate_obstacle(const Pair       &pair,
+                             const PairEnergy &energy,
+                             model::DofBlock  &block) const;
     void record_pair(const Pair                            &pair,
                      const std::array<dealii::Point<3>, 4> &points,
                      const Coordinates12                   &gradient,
                      double                                 gap,
                      const model::DofBlock                 &block);
-    class PairSelector;
     /// 'shell_tree': the shell triangles at x, inflated by max_reach().
     void find_pairs(const std::vector<dealii::Point<3>> &x,
                     const Tree                          &shell_tree);
