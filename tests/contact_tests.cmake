@@ -80,6 +80,13 @@ set(funnel contact/funnel.prm)
 coshell_contact_test(contact.funnel.barrier ${funnel}
   ARGS --set "Output/Write VTU=false" --gap-nonnegative
   --force-range 2 fx -1 -0.001 --summary smallest_gap 0 1)
+# With friction (mu = 0.1 on funnel and plunger; converges since the
+# edge-edge pairs, not before): the same guarantee, and the plunger pushes.
+coshell_contact_test(contact.funnel.barrier_friction ${funnel}
+  ARGS --set "Output/Write VTU=false"
+  --set "Contact/Obstacle 1/Friction coefficient=0.1"
+  --set "Contact/Obstacle 2/Friction coefficient=0.1"
+  --gap-nonnegative --force-range 2 fx -1 -0.001)
 coshell_contact_test(contact.funnel.penalty ${funnel}
   ARGS --set "Output/Write VTU=false" --set "Contact/Method=penalty"
   --force-range 2 fx -1 -0.001 --summary largest_penetration 1e-9 0.1)
@@ -184,14 +191,22 @@ coshell_contact_test(contact.self.plate_on_plate.gap contact/plate_on_plate.prm
 # the strip turns through more than a full turn, both layers carry
 # contact force and it sums to zero; the gap stays positive at every
 # iterate.
-add_test(NAME contact.self.rollup
-         COMMAND ${COSHELL_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_rollup.py
-                 --coshell $<TARGET_FILE:coshell>
-                 --prm ${COSHELL_PRM}/contact/self_contact_rollup.prm
-                 --output ${CMAKE_CURRENT_BINARY_DIR}/output/contact.self.rollup
-                 --root-x 1.5 --length 6 --thickness 0.05 --bending-stiffness 1
-                 --moment-max 1.308996939 --force-tolerance 0.02
-                 --position-tolerance 0.002)
-set_tests_properties(contact.self.rollup PROPERTIES LABELS contact)
+# coshell_rollup_test(NAME ARGS extra arguments...)
+function(coshell_rollup_test name)
+  add_test(NAME ${name}
+           COMMAND ${COSHELL_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_rollup.py
+                   --coshell $<TARGET_FILE:coshell>
+                   --prm ${COSHELL_PRM}/contact/self_contact_rollup.prm
+                   --output ${CMAKE_CURRENT_BINARY_DIR}/output/${name}
+                   --root-x 1.5 --length 6 --thickness 0.05 --bending-stiffness 1
+                   --moment-max 1.308996939 --force-tolerance 0.02
+                   --position-tolerance 0.002 ${ARGN})
+  set_tests_properties(${name} PROPERTIES LABELS contact)
+endfunction()
+coshell_rollup_test(contact.self.rollup)
+# The same with shell edges against shell edges as well (25 active pairs
+# at the end instead of 6; the same elastica values within 0.05 %).
+coshell_rollup_test(contact.self.rollup.edge_edge
+  --set "Contact/Edge-edge pairs=true")
 coshell_bad_input_test(contact_shell_starts_in_self_contact "the shell starts in contact with itself .Contact/Self contact.: shell vertex"
   ${COSHELL_PRM}/contact/plate_on_plate.prm --set "Mesh/Gmsh parameters=upper_height = 0.05")

@@ -78,9 +78,9 @@ namespace coshell::contact
     obstacle_trees_.resize(n);
     loads_.resize(n);
     vertex_gap_.assign(vertices.size(), infinity);
+    build_edges();
     if (parameters_.self_contact)
       exclude_reference_neighbours();
-    build_edges();
     vertex_force_.reinit(model.n_dofs());
     smallest_gap_ = infinity;
   }
@@ -98,7 +98,8 @@ namespace coshell::contact
   double Contact::offset(const Pair &pair) const
   {
     if (pair.edge_edge)
-      return edge_offset(pair.obstacle, pair.shell);
+      return pair.self ? self_edge_offset(pair.shell, pair.other)
+                       : edge_offset(pair.obstacle, pair.shell);
     return pair.self
                ? self_offset(pair.shell, pair.other)
                : offset(pair.obstacle, pair.shell_vertex_side, pair.shell);
@@ -296,6 +297,8 @@ namespace coshell::contact
     const Tree shell_tree = shell_triangle_tree(x, &dx, max_reach());
     double     fraction =
         parameters_.self_contact ? self_ccd_fraction(x, dx, shell_tree) : 1.0;
+    if (parameters_.self_contact && parameters_.edge_edge_pairs)
+      fraction = std::min(fraction, self_edge_ccd_fraction(x, dx, shell_tree));
     for (unsigned int o = 0; o < current_.size(); ++o)
       fraction =
           std::min(fraction, ccd_fraction(x, &dx, shell_tree, o, nullptr));
@@ -411,10 +414,14 @@ namespace coshell::contact
       if (pair.self)
       {
         message << "the shell starts in contact with itself (Contact/Self "
-                   "contact): shell vertex "
+                   "contact): "
+                << (pair.edge_edge ? "shell edge " : "shell vertex ")
                 << pair.shell << " at " << p[0] << " is at distance "
-                << distance << " from shell triangle " << pair.other
-                << ", not more than their mean thickness " << offset(pair);
+                << distance
+                << (pair.edge_edge ? " from shell edge "
+                                   : " from shell triangle ")
+                << pair.other << ", not more than their mean thickness "
+                << offset(pair);
         throw std::runtime_error(message.str());
       }
       const Obstacle &obstacle = parameters_.obstacles[pair.obstacle];

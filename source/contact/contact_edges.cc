@@ -117,10 +117,12 @@ namespace coshell::contact
     CrossSquared c{0};
     if (pair.edge_edge)
     {
-      const double rest_obstacle =
-          (points[3] - points[2]).norm_square(); // rigid: current = rest
+      // An obstacle is rigid: its current edge length is its rest length.
+      const double rest_other = pair.self
+                                    ? shell_edge_length2_[pair.other]
+                                    : (points[3] - points[2]).norm_square();
       const double eps =
-          parallel_threshold * shell_edge_length2_[pair.shell] * rest_obstacle;
+          parallel_threshold * shell_edge_length2_[pair.shell] * rest_other;
       c = cross_squared(points);
       if (c.value < eps)
       {
@@ -156,6 +158,7 @@ namespace coshell::contact
   {
     const auto &reference = model_.surface().get_vertices();
     std::map<std::array<unsigned, 2>, unsigned> index;
+    shell_triangle_edges_.resize(shell_triangles_.size());
     for (unsigned int t = 0; t < shell_triangles_.size(); ++t)
       for (unsigned int k = 0; k < 3; ++k)
       {
@@ -171,6 +174,7 @@ namespace coshell::contact
               (reference[e[1]] - reference[e[0]]).norm_square());
         }
         shell_edge_area_[it->second] += shell_triangle_area_[t] / 3;
+        shell_triangle_edges_[t][k] = it->second;
       }
     for (const Obstacle &obstacle : parameters_.obstacles)
     {
@@ -193,17 +197,18 @@ namespace coshell::contact
     }
   }
 
-  void Contact::edges_near(const Tree                  &tree,
-                           unsigned int                 o,
-                           const std::vector<Point<3>> &corners,
-                           std::vector<unsigned int>   &edges) const
+  void Contact::edges_near(
+      const Tree                                 &tree,
+      const std::vector<std::array<unsigned, 3>> &triangle_edges,
+      const std::vector<Point<3>>                &corners,
+      std::vector<unsigned int>                  &edges)
   {
     std::vector<std::pair<BoundingBox<3>, unsigned>> hits;
     tree.query(bgi::intersects(BoundingBox<3>(corners)),
                std::back_inserter(hits));
     edges.clear();
     for (const auto &hit : hits)
-      for (const unsigned f : obstacle_triangle_edges_[o][hit.second])
+      for (const unsigned f : triangle_edges[hit.second])
         edges.push_back(f);
     std::sort(edges.begin(), edges.end());
     edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
@@ -232,7 +237,7 @@ namespace coshell::contact
     for (unsigned int e = 0; e < shell_edges_.size(); ++e)
     {
       const auto [a, b] = shell_edges_[e];
-      edges_near(obstacle_tree, o,
+      edges_near(obstacle_tree, obstacle_triangle_edges_[o],
                  {x[a], x[b], x[a] + along(dx, a), x[b] + along(dx, b)}, edges);
       for (const unsigned f : edges)
       {

@@ -150,6 +150,8 @@ namespace coshell::contact
     }
     if (parameters_.self_contact)
       find_self_pairs(x, shell_tree, selector);
+    if (parameters_.self_contact && parameters_.edge_edge_pairs)
+      find_self_edge_pairs(x, shell_tree, selector);
   }
 
   void Contact::find_shell_vertex_pairs(unsigned int                 o,
@@ -286,6 +288,11 @@ namespace coshell::contact
                        const std::vector<Point<3>> &x,
                        const std::vector<Point<3>> &X) const
   {
+    if (pair.self && pair.edge_edge)
+    {
+      const auto &e = shell_edges_[pair.shell], &f = shell_edges_[pair.other];
+      return {x[e[0]], x[e[1]], x[f[0]], x[f[1]]};
+    }
     if (pair.self)
     {
       const auto &t = shell_triangles_[pair.other];
@@ -315,7 +322,9 @@ namespace coshell::contact
     for (unsigned int i = 0; i < n_vertices; ++i)
     {
       const unsigned v =
-          pair.self
+          pair.self && pair.edge_edge
+              ? shell_edges_[i < 2 ? pair.shell : pair.other][i % 2]
+          : pair.self
               ? (i == 0 ? pair.shell : shell_triangles_[pair.other][i - 1])
           : pair.edge_edge         ? shell_edges_[pair.shell][i]
           : pair.shell_vertex_side ? pair.shell
@@ -468,6 +477,9 @@ namespace coshell::contact
     {
       for (const unsigned v : shell_edges_[pair.shell])
         mark(v);
+      if (pair.self)
+        for (const unsigned v : shell_edges_[pair.other])
+          mark(v);
       return;
     }
     if (pair.shell_vertex_side)
@@ -493,19 +505,61 @@ namespace coshell::contact
     for (unsigned int e = 0; e < shell_edges_.size(); ++e)
     {
       const auto [a, b] = shell_edges_[e];
-      edges_near(obstacle_trees_[o], o, {x[a], x[b]}, edges);
+      edges_near(obstacle_trees_[o], obstacle_triangle_edges_[o], {x[a], x[b]},
+                 edges);
       for (const unsigned f : edges)
       {
-        const auto [c, d]     = obstacle_edges_[o][f];
-        const double distance = std::sqrt(
-            segment_segment_distance(x[a], x[b], X[c], X[d], false).value);
-        if (distance >= reach(o))
+        const auto [c, d] = obstacle_edges_[o][f];
+        offer_edge_pair(selector, {true, o, e, f, shell_edge_area_[e]},
+                        {x[a], x[b], X[c], X[d]}, {a, b, c, d}, reach(o));
+      }
+      selector.settle();
+    }
+  }
+} // namespace coshell::contact
+
+namespace coshell::contact
+{
+  using namespace dealii;
+
+  void Contact::offer_edge_pair(PairSelector                  &selector,
+                                Pair                           pair,
+                                const std::array<Point<3>, 4> &p,
+                                const std::array<unsigned, 4> &ids,
+                                double                         reach) const
+  {
+    const double distance = std::sqrt(
+        segment_segment_distance(p[0], p[1], p[2], p[3], false).value);
+    if (distance >= reach)
+      return;
+    pair.edge_edge = true;
+    selector.add({{-1, long(ids[0]), long(ids[1])},
+                  {-1, long(ids[2]), long(ids[3])},
+                  distance,
+                  false},
+                 pair);
+  }
+
+  /// Self contact of shell edges: each allowed pair (e, f), e < f, once.
+  void Contact::find_self_edge_pairs(const std::vector<Point<3>> &x,
+                                     const Tree                  &shell_tree,
+                                     PairSelector                &selector)
+  {
+    const double activation =
+        parameters_.method == Method::barrier ? activation_ : 0.0;
+    std::vector<unsigned int> edges;
+    for (unsigned int e = 0; e < shell_edges_.size(); ++e)
+    {
+      const auto [a, b] = shell_edges_[e];
+      edges_near(shell_tree, shell_triangle_edges_, {x[a], x[b]}, edges);
+      for (const unsigned f : edges)
+      {
+        if (f <= e || !self_edge_pair_allowed(e, f))
           continue;
-        Pair pair{true, o, e, f, shell_edge_area_[e]};
-        pair.edge_edge = true;
-        selector.add(
-            {{-1, long(a), long(b)}, {-1, long(c), long(d)}, distance, false},
-            pair);
+        const auto [c, d] = shell_edges_[f];
+        offer_edge_pair(selector, {true, 0, e, f, shell_edge_area_[e], true},
+                        {x[a], x[b], x[c], x[d]}, {a, b, c, d},
+                        self_edge_offset(e, f) + activation);
       }
       selector.settle();
     }

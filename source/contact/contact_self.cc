@@ -60,6 +60,81 @@ namespace coshell::contact
       }
       std::sort(excluded_[v].begin(), excluded_[v].end());
     }
+    if (parameters_.edge_edge_pairs)
+    {
+      std::vector<unsigned int> roots(piece.size());
+      for (unsigned int v = 0; v < piece.size(); ++v)
+        roots[v] = root_of(piece, v);
+      exclude_reference_edge_neighbours(roots);
+    }
+  }
+
+  void Contact::exclude_reference_edge_neighbours(
+      const std::vector<unsigned int> &piece_of_vertex)
+  {
+    const auto &X    = model_.surface().get_vertices();
+    const Tree  tree = shell_triangle_tree(
+         X, nullptr, parameters_.self_exclusion * largest_thickness_);
+    excluded_edges_.assign(shell_edges_.size(), {});
+    std::vector<unsigned int> near;
+    for (unsigned int e = 0; e < shell_edges_.size(); ++e)
+    {
+      const auto [a, b] = shell_edges_[e];
+      edges_near(tree, shell_triangle_edges_, {X[a], X[b]}, near);
+      for (const unsigned f : near)
+      {
+        const auto [c, d] = shell_edges_[f];
+        if (piece_of_vertex[a] != piece_of_vertex[c])
+          continue;
+        const double reference = std::sqrt(
+            segment_segment_distance(X[a], X[b], X[c], X[d], false).value);
+        if (reference < parameters_.self_exclusion * self_edge_offset(e, f))
+          excluded_edges_[e].push_back(f); // sorted, as 'near' is
+      }
+    }
+  }
+
+  double Contact::self_edge_offset(unsigned int e, unsigned int f) const
+  {
+    double sum = 0;
+    for (const unsigned int edge : {e, f})
+      for (const unsigned int v : shell_edges_[edge])
+        sum += model_.vertex_thickness(v);
+    return sum / 4; // the mean of the two edges' half thicknesses, summed
+  }
+
+  bool Contact::self_edge_pair_allowed(unsigned int e, unsigned int f) const
+  {
+    // Edges sharing a vertex are within zero of each other: never a pair
+    // (also excluded by the reference distance, which is zero).
+    return !std::binary_search(excluded_edges_[e].begin(),
+                               excluded_edges_[e].end(), f);
+  }
+
+  double Contact::self_edge_ccd_fraction(const std::vector<Point<3>>     &x,
+                                         const std::vector<Tensor<1, 3>> &dx,
+                                         const Tree &swept_shell_tree) const
+  {
+    double                    fraction = 1;
+    std::vector<unsigned int> edges;
+    for (unsigned int e = 0; e < shell_edges_.size(); ++e)
+    {
+      const auto [a, b] = shell_edges_[e];
+      edges_near(swept_shell_tree, shell_triangle_edges_,
+                 {x[a], x[b], x[a] + dx[a], x[b] + dx[b]}, edges);
+      for (const unsigned f : edges)
+      {
+        if (f <= e || !self_edge_pair_allowed(e, f))
+          continue;
+        const auto [c, d] = shell_edges_[f];
+        fraction =
+            std::min(fraction, additive_ccd(PrimitivePair::segment_segment,
+                                            {x[a], x[b], x[c], x[d]},
+                                            {dx[a], dx[b], dx[c], dx[d]},
+                                            self_edge_offset(e, f)));
+      }
+    }
+    return fraction;
   }
 
   double Contact::self_offset(unsigned int v, unsigned int t) const
@@ -127,6 +202,26 @@ namespace coshell::contact
         if (self_pair_allowed(v, hit.second))
           for (const unsigned w : shell_triangles_[hit.second])
             pairs.push_back({v, w});
+    }
+    if (parameters_.edge_edge_pairs)
+      add_self_edge_couplings(x, tree, pairs);
+  }
+
+  void Contact::add_self_edge_couplings(
+      const std::vector<Point<3>>              &x,
+      const Tree                               &tree,
+      std::vector<std::array<unsigned int, 2>> &pairs) const
+  {
+    std::vector<unsigned int> edges;
+    for (unsigned int e = 0; e < shell_edges_.size(); ++e)
+    {
+      edges_near(tree, shell_triangle_edges_,
+                 {x[shell_edges_[e][0]], x[shell_edges_[e][1]]}, edges);
+      for (const unsigned f : edges)
+        if (f > e && self_edge_pair_allowed(e, f))
+          for (const unsigned v : shell_edges_[e])
+            for (const unsigned w : shell_edges_[f])
+              pairs.push_back({v, w});
     }
   }
 } // namespace coshell::contact

@@ -201,6 +201,10 @@ namespace coshell::contact
     std::vector<std::array<unsigned, 2>> shell_edges_;
     std::vector<double>                  shell_edge_area_;
     std::vector<double>                  shell_edge_length2_;
+    /// The three edges of each shell triangle; per shell edge, the sorted
+    /// shell edges it does not pair with in self contact.
+    std::vector<std::array<unsigned, 3>> shell_triangle_edges_;
+    std::vector<std::vector<unsigned>>   excluded_edges_;
     /// Per obstacle: its edges, and the three edges of each triangle.
     std::vector<std::vector<std::array<unsigned, 2>>> obstacle_edges_;
     std::vector<std::vector<std::array<unsigned, 3>>> obstacle_triangle_edges_;
@@ -226,17 +230,44 @@ namespace coshell::contact
     /// Lists the shell's and the obstacles' edges (constructor).
     void build_edges();
     class PairSelector;
+    /// Adds the edge-edge pair (two edges, points p and mesh vertex ids)
+    /// to the selector if its distance is below 'reach'.
+    void offer_edge_pair(PairSelector                  &selector,
+                         Pair                           pair,
+                         const std::array<Point<3>, 4> &p,
+                         const std::array<unsigned, 4> &ids,
+                         double                         reach) const;
     /// Shell edges against the edges of obstacle o's triangles within
     /// reach (one pair per two edges).
     void find_edge_pairs(unsigned int                         o,
                          const std::vector<dealii::Point<3>> &x,
                          PairSelector                        &selector);
-    /// The edges of obstacle o's triangles in 'tree' whose boxes meet the
-    /// box of 'corners' (sorted, each once).
-    void edges_near(const Tree                          &tree,
-                    unsigned int                         o,
-                    const std::vector<dealii::Point<3>> &corners,
-                    std::vector<unsigned int>           &edges) const;
+    /// The edges (by 'triangle_edges', the obstacle's or the shell's) of
+    /// the triangles in 'tree' whose boxes meet the box of 'corners'
+    /// (sorted, each once).
+    static void
+    edges_near(const Tree                                 &tree,
+               const std::vector<std::array<unsigned, 3>> &triangle_edges,
+               const std::vector<dealii::Point<3>>        &corners,
+               std::vector<unsigned int>                  &edges);
+    /// Self contact of edges e and f: the mean of their half thicknesses,
+    /// and whether they may pair (no shared vertex, not excluded).
+    double self_edge_offset(unsigned int e, unsigned int f) const;
+    bool   self_edge_pair_allowed(unsigned int e, unsigned int f) const;
+    /// Edge pairs of the same connected piece nearer than the exclusion
+    /// distance in the reference configuration (after the vertex ones).
+    void exclude_reference_edge_neighbours(
+        const std::vector<unsigned int> &piece_of_vertex);
+    void find_self_edge_pairs(const std::vector<dealii::Point<3>> &x,
+                              const Tree                          &shell_tree,
+                              PairSelector                        &selector);
+    void add_self_edge_couplings(
+        const std::vector<dealii::Point<3>>      &x,
+        const Tree                               &tree,
+        std::vector<std::array<unsigned int, 2>> &pairs) const;
+    double self_edge_ccd_fraction(const std::vector<dealii::Point<3>>     &x,
+                                  const std::vector<dealii::Tensor<1, 3>> &dx,
+                                  const Tree &swept_shell_tree) const;
     /// Largest fraction of the motion that keeps every shell edge apart
     /// from the edges of the obstacle triangles in 'obstacle_tree'.
     double edge_ccd_fraction(const std::vector<dealii::Point<3>>     &x,
