@@ -3,7 +3,7 @@
 comparable. Writes to doc/performance/, stamped with machine and commit:
 
 - contact_scaling.csv / .png: the plate resting on a plane (prm/contact/
-  plate_on_plane.prm, statics, barrier), shell 256 to 4096 triangles,
+  plate_on_plane.prm, statics, barrier), shell 256 to 99856 triangles,
   plane 50 to 80000 triangles (STL written here): contact seconds per
   evaluation (detection + pair terms + collision filter) and their share
   of the solve.
@@ -11,7 +11,12 @@ comparable. Writes to doc/performance/, stamped with machine and commit:
   barrier or penalty, without and with friction (mu = 0.1 on both
   obstacles): wall time, steps, Newton iterations, contact share.
 
-  /usr/bin/python3 doc/scripts/contact_benchmark.py --coshell build/coshell
+  /usr/bin/python3 doc/scripts/contact_benchmark.py --coshell build/coshell \
+      [--work DIR] [--timeout SECONDS]
+
+--work keeps the runs in DIR and reuses a run whose summary.json is there
+(to finish an interrupted benchmark); --timeout ends a run that takes
+longer (recorded as not converged).
 """
 import argparse
 import json
@@ -28,7 +33,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 OUT = os.path.join(ROOT, "doc", "performance")
-SHELL_SUBDIVISIONS = [8, 16, 32]       # crossed: 4 n^2 triangles
+SHELL_SUBDIVISIONS = [8, 16, 32, 158]  # crossed: 4 n^2 triangles (to 99856)
 PLANE_SQUARES = [5, 50, 200]           # 2 m^2 triangles
 
 
@@ -49,14 +54,24 @@ def write_plane_stl(path, m):
         f.write("endsolid plane\n")
 
 
+TIMEOUT = None  # seconds per run (--timeout)
+
+
 def run(coshell, prm, output, settings, allow_failure=False):
+    if os.path.exists(os.path.join(output, "summary.json")):
+        with open(os.path.join(output, "summary.json")) as f:
+            return json.load(f)
     command = [coshell, os.path.join(ROOT, "prm", "contact", prm), "--output", output,
                "--set", "Output/Write VTU=false", "--set", "Parallel/Threads=1",
                "--set", "Contact/Pairs=all",
                "--set", "Nonlinear solver/Residual tolerance=1e-7"]
     for s in settings:
         command += ["--set", s]
-    result = subprocess.run(command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    try:
+        result = subprocess.run(command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                                text=True, timeout=TIMEOUT)
+    except subprocess.TimeoutExpired:
+        return {"error": f"not done after {TIMEOUT} s"}
     if result.returncode != 0:
         if allow_failure:
             return {"error": result.stderr.strip()}
@@ -78,7 +93,14 @@ def scaling_rows(coshell, work):
         for n in SHELL_SUBDIVISIONS:
             summary = run(coshell, "plate_on_plane.prm", os.path.join(work, f"p{m}-{n}"),
                           [f"Mesh/Subdivisions x={n}", f"Mesh/Subdivisions y={n}",
-                           f"Contact/Obstacle 1/Mesh file={stl}"])
+                           f"Contact/Obstacle 1/Mesh file={stl}"], allow_failure=True)
+            if "error" in summary:
+                rows.append({"shell_triangles": 4 * n * n, "obstacle_triangles": 2 * m * m,
+                             "evaluations": 0, "contact_ms_per_evaluation": None,
+                             "detection_ms": None, "pair_terms_ms": None, "filter_ms": None,
+                             "contact_share_of_solve": None,
+                             "error": summary["error"].replace(",", ";")})
+                continue
             steps = summary["load_steps"]
             evaluations = summary["newton_iterations"] + steps
             seconds = contact_seconds(summary)
@@ -88,7 +110,8 @@ def scaling_rows(coshell, work):
                          "detection_ms": round(1e3 * summary["contact"]["detection_s"] / evaluations, 3),
                          "pair_terms_ms": round(1e3 * summary["contact"]["pair_terms_s"] / evaluations, 3),
                          "filter_ms": round(1e3 * summary["contact"]["collision_filter_s"] / evaluations, 3),
-                         "contact_share_of_solve": round(seconds / summary["wall_time_s"]["solve"], 3)})
+                         "contact_share_of_solve": round(seconds / summary["wall_time_s"]["solve"], 3),
+                         "error": ""})
     return rows
 
 
@@ -125,7 +148,8 @@ def method_rows(coshell, work):
 def plot_scaling(rows, commit):
     figure, axes = plt.subplots(figsize=(7, 4.5))
     for m in PLANE_SQUARES:
-        part = [r for r in rows if r["obstacle_triangles"] == 2 * m * m]
+        part = [r for r in rows if r["obstacle_triangles"] == 2 * m * m
+                and r["contact_ms_per_evaluation"] is not None]
         axes.loglog([r["shell_triangles"] for r in part],
                     [r["contact_ms_per_evaluation"] for r in part], "o-",
                     label=f"plane of {2 * m * m} triangles")
@@ -151,11 +175,17 @@ def plot_methods(rows, commit):
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--coshell", required=True)
+    parser.add_argument("--work")
+    parser.add_argument("--timeout", type=float)
     args = parser.parse_args()
+    global TIMEOUT
+    TIMEOUT = args.timeout
     coshell = os.path.abspath(args.coshell)
     machine, commit = machine_and_commit()
     os.makedirs(OUT, exist_ok=True)
-    with tempfile.TemporaryDirectory() as work:
+    with tempfile.TemporaryDirectory() as scratch:
+        work = args.work or scratch
+        os.makedirs(work, exist_ok=True)
         scaling = scaling_rows(coshell, work)
         methods = method_rows(coshell, work)
     stamp = f"machine: {machine}; commit {commit}; Parallel/Threads = 1"

@@ -7,7 +7,7 @@ doc/performance.md (section "Nonlinear benchmarks: wall time").
 
   /usr/bin/python3 doc/scripts/nonlinear_benchmarks.py \
       --coshell /tmp/final-docs-build/coshell [--work /tmp/nonlinear-docs] \
-      [--timeout 120] [--only NAME ...]
+      [--timeout 120] [--only NAME ...] [--symmetric-only]
 
 Writes into doc/validation/nonlinear/:
   iterations.csv        one row per benchmark and tangent: status, load
@@ -20,6 +20,11 @@ Writes into doc/validation/nonlinear/:
                         membrane)
   <name>.csv / .png     load-displacement path (consistent tangent)
   <name>_newton_history.csv
+  symmetric_tangent.csv every benchmark and stability case with the
+                        consistent tangent and with its symmetric part
+                        (Tangent = symmetric, CHOLMOD): iterations, wall
+                        time, final QoIs (--symmetric-only writes just
+                        this file)
 Machine (lscpu) and commit (git rev-parse --short HEAD) are written as
 '#' comment lines at the top of each CSV.
 """
@@ -220,18 +225,44 @@ def plot_roof(rows, path):
     return [(p[i], d[i], rows[i]["step"]) for i in peaks]
 
 
+def compare_symmetric(args, header):
+    """The consistent tangent against its symmetric part on every case,
+    one run each, in this one invocation."""
+    records = []
+    for name, prm, sets, _, _ in BENCHMARKS + STABILITY:
+        for tangent in ("consistent", "symmetric"):
+            record, output, _, _ = run(args, name, prm, sets, tangent)
+            summary_path = os.path.join(output, "summary.json")
+            fallbacks = 0
+            if os.path.exists(summary_path):
+                with open(summary_path) as f:
+                    summary = json.load(f)
+                level = summary.get("levels", [summary])[-1]
+                fallbacks = level.get("cholmod_fallbacks", 0)
+            records.append({k: record[k] for k in (
+                "benchmark", "tangent", "status", "load_steps",
+                "newton_iterations", "wall_time_s", "solve_time_s",
+                "final_load_factor", "final_qoi")} |
+                {"cholmod_fallbacks": fallbacks})
+    write_csv(os.path.join(OUT, "symmetric_tangent.csv"), records, header)
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--coshell", required=True)
     parser.add_argument("--work", default="/tmp/nonlinear-docs")
     parser.add_argument("--timeout", type=float, default=120)
     parser.add_argument("--skip-stability", action="store_true")
+    parser.add_argument("--symmetric-only", action="store_true")
     args = parser.parse_args()
     os.makedirs(OUT, exist_ok=True)
     os.makedirs(args.work, exist_ok=True)
     machine, commit = machine_and_commit()
     header = [f"machine: {machine}; commit {commit}; coshell {args.coshell}",
               f"every run: --set '{MAX_IT}' --set '{NO_VTU}', timeout {args.timeout:g} s"]
+    compare_symmetric(args, header)
+    if args.symmetric_only:
+        return
 
     records, references = [], []
     for name, prm, sets, points, length in BENCHMARKS:

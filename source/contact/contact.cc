@@ -380,6 +380,23 @@ namespace coshell::contact
     largest_penetration_ = 0;
   }
 
+  void Contact::begin_trial()
+  {
+    trial_current_ = current_;
+    trial_pending_ = pending_;
+  }
+
+  void Contact::end_trial()
+  {
+    pending_ = trial_pending_;
+    for (unsigned int o = 0; o < current_.size(); ++o)
+      if (current_[o] != trial_current_[o])
+      {
+        current_[o] = trial_current_[o];
+        rebuild_tree(o);
+      }
+  }
+
   void Contact::restore()
   {
     if (saved_.empty())

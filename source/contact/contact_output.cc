@@ -140,6 +140,16 @@ namespace coshell::contact
     contact_.restore();
   }
 
+  void ContactContribution::begin_trial()
+  {
+    contact_.begin_trial();
+  }
+
+  void ContactContribution::end_trial()
+  {
+    contact_.end_trial();
+  }
+
   bool ContactContribution::symmetric_tangent() const
   {
     return true;

@@ -214,6 +214,7 @@ namespace coshell::driver
     result.n_vertices        = surface.n_used_vertices();
     result.n_dofs            = model.n_dofs();
     result.reference         = quantities_.references();
+    result.cholmod_fallbacks = linear_solver_.cholmod_fallbacks();
     for (const auto &[name, value] : result.qoi)
       log << "  " << name << " = " << value << '\n';
     for (const auto &[name, error] : result.relative_errors())

@@ -612,6 +612,16 @@ namespace coshell::element
         }
     }
 
+    // K <- (K + K^T) / 2. The consistent tangent is symmetric at
+    // equilibrium (Felippa & Haugen 2005); away from it the skew part is
+    // what the symmetric variant gives up for a Cholesky solve.
+    void symmetrize(FullMatrix<double> &tangent)
+    {
+      for (unsigned int i = 0; i < tangent.m(); ++i)
+        for (unsigned int j = i + 1; j < tangent.n(); ++j)
+          tangent(i, j) = tangent(j, i) = 0.5 * (tangent(i, j) + tangent(j, i));
+    }
+
     CorotationalReference make_reference(const SpatialTriangle &initial)
     {
       CorotationalReference reference;
@@ -668,7 +678,7 @@ namespace coshell::element
       return g;
     };
 
-    if (tangent != nullptr && tangent_type == CorotationalTangent::consistent)
+    if (tangent != nullptr && tangent_type != CorotationalTangent::paper)
     {
       // K = J^T K_l J + sum_k g_k d^2 d_k/dp^2 + rotation-update term.
       const CorotatedKinematics<2> jets(reference, current, rotations);
@@ -680,6 +690,8 @@ namespace coshell::element
       tangent->triple_product(stiffness, j, j, true, false);
       tangent->add(1.0, jets.weighted_hessian(g));
       add_rotation_update_term(force, *tangent);
+      if (tangent_type == CorotationalTangent::symmetric)
+        symmetrize(*tangent);
       return;
     }
 

@@ -26,12 +26,14 @@ namespace coshell::io
     json["n_dofs"]                   = n_dofs;
     json["n_inactive_dofs"]          = n_inactive_dofs;
     json["linear_solver_iterations"] = linear_solver_iterations;
-    Json &times                      = json["wall_time_s"];
-    times["setup"]                   = wall_time_s.setup;
-    times["assemble"]                = wall_time_s.assemble;
-    times["solve"]                   = wall_time_s.solve;
-    times["output"]                  = wall_time_s.output;
-    times["total"]                   = wall_time_s.total;
+    if (cholmod_fallbacks > 0)
+      json["cholmod_fallbacks"] = cholmod_fallbacks;
+    Json &times       = json["wall_time_s"];
+    times["setup"]    = wall_time_s.setup;
+    times["assemble"] = wall_time_s.assemble;
+    times["solve"]    = wall_time_s.solve;
+    times["output"]   = wall_time_s.output;
+    times["total"]    = wall_time_s.total;
     if (load_steps > 0 || steps > 0)
       json["newton_iterations"] = newton_iterations;
     if (load_steps > 0)

@@ -47,7 +47,7 @@ namespace coshell::model
   bool InternalForce::symmetric_tangent() const
   {
     return kinematics_ == Formulation::linear ||
-           tangent_ == element::CorotationalTangent::paper;
+           tangent_ != element::CorotationalTangent::consistent;
   }
 
   element::NodalRotations

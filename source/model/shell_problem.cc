@@ -296,6 +296,18 @@ namespace coshell::model
       contribution->restore();
   }
 
+  void ShellProblem::begin_trial()
+  {
+    for (const auto &contribution : contributions_)
+      contribution->begin_trial();
+  }
+
+  void ShellProblem::end_trial()
+  {
+    for (const auto &contribution : contributions_)
+      contribution->end_trial();
+  }
+
   bool ShellProblem::symmetric_tangent() const
   {
     for (const auto &contribution : contributions_)

@@ -139,8 +139,19 @@ namespace coshell::solvers
     backend_->using_cholmod = method_ == "cholmod" && symmetric;
     if (backend_->using_cholmod)
     {
-      backend_->cholmod.factorize(matrix);
-      return;
+      // A symmetric tangent need not be positive definite (past a limit
+      // point, or the symmetrized co-rotational tangent under compression):
+      // then this factorization is UMFPACK's.
+      try
+      {
+        backend_->cholmod.factorize(matrix);
+        return;
+      }
+      catch (const std::runtime_error &)
+      {
+        backend_->using_cholmod = false;
+        ++cholmod_fallbacks_;
+      }
     }
     if (method_ == "umfpack" || method_ == "cholmod")
     {

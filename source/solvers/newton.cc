@@ -97,10 +97,12 @@ namespace coshell::solvers
     for (unsigned int trial = 0; trial < 4; ++trial)
     {
       step.equ(a, correction);
+      problem.begin_trial();
       problem.apply_increment(step);
       problem.evaluate(trial_residual, nullptr);
       step *= -1;
       problem.apply_increment(step);
+      problem.end_trial();
       const double slope = correction * trial_residual;
       if (!std::isfinite(slope))
       {

@@ -19,9 +19,13 @@ namespace coshell::solvers
                       "which follows limit points and snap-through (loads "
                       "only, no prescribed motions).");
     prm.declare_entry("Tangent", "consistent",
-                      Patterns::Selection("consistent|paper"),
+                      Patterns::Selection("consistent|symmetric|paper"),
                       "consistent: exact derivative of the co-rotational "
-                      "internal force (quadratic convergence); paper: the "
+                      "internal force (quadratic convergence, non-symmetric: "
+                      "UMFPACK); symmetric: its symmetric part (exact at "
+                      "equilibrium; Cholesky with Linear solver/Method = "
+                      "cholmod, which falls back to UMFPACK where the "
+                      "matrix is not positive definite); paper: the "
                       "approximation R K R^T of Comas et al. 2010.");
     prm.declare_entry("Load steps", "10", Patterns::Integer(1),
                       "Initial number of equal increments of the path "
@@ -53,15 +57,17 @@ namespace coshell::solvers
   void PathFollowing::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Nonlinear solver");
-    method_               = prm.get("Method");
-    tangent_              = prm.get("Tangent") == "paper"
-                                ? element::CorotationalTangent::paper
-                                : element::CorotationalTangent::consistent;
-    load_steps_           = prm.get_integer("Load steps");
-    max_step_cuts_        = prm.get_integer("Maximum step cuts");
-    easy_iterations_      = prm.get_integer("Easy step iterations");
-    growth_factor_        = prm.get_double("Step growth factor");
-    cut_factor_           = prm.get_double("Step cut factor");
+    method_                   = prm.get("Method");
+    const std::string tangent = prm.get("Tangent");
+    tangent_         = tangent == "paper" ? element::CorotationalTangent::paper
+                       : tangent == "symmetric"
+                           ? element::CorotationalTangent::symmetric
+                           : element::CorotationalTangent::consistent;
+    load_steps_      = prm.get_integer("Load steps");
+    max_step_cuts_   = prm.get_integer("Maximum step cuts");
+    easy_iterations_ = prm.get_integer("Easy step iterations");
+    growth_factor_   = prm.get_double("Step growth factor");
+    cut_factor_      = prm.get_double("Step cut factor");
     max_arc_length_steps_ = prm.get_integer("Maximum arc-length steps");
     max_load_factor_      = prm.get_double("Maximum load factor");
     newton_.parse_parameters(prm);

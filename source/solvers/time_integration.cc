@@ -149,6 +149,14 @@ namespace coshell::solvers
       {
         problem_.restore();
       }
+      void begin_trial() override
+      {
+        problem_.begin_trial();
+      }
+      void end_trial() override
+      {
+        problem_.end_trial();
+      }
       bool symmetric_tangent() const override
       {
         return problem_.symmetric_tangent();

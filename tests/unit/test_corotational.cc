@@ -636,3 +636,32 @@ TEST(CorotationalShell, AndesMembraneKeepsTheKernelConsistent)
       Tensor<1, 3>({0.3, 2.0, -1.0}));
   EXPECT_LT(norm(force(element, moved)), 1e-10 * force_scale(element));
 }
+
+// The symmetric tangent is the symmetric part of the consistent one, with
+// the same force.
+TEST(CorotationalShell, SymmetricTangentIsTheSymmetricPartOfTheConsistent)
+{
+  const CorotationalShell element(initial_triangle, thick_material(),
+                                  with_bending(both_elements[0]));
+  const State             state = random_deformed_state(initial_triangle, 5);
+  FullMatrix<double>      symmetric;
+  const auto              f =
+      force(element, state, CorotationalTangent::symmetric, &symmetric);
+  const FullMatrix<double> consistent = consistent_tangent(element, state);
+  EXPECT_EQ(f, force(element, state));
+  double largest = 0, skew = 0;
+  for (unsigned int i = 0; i < shell_dofs; ++i)
+    for (unsigned int j = 0; j < shell_dofs; ++j)
+    {
+      largest = std::max(largest, std::abs(consistent(i, j)));
+      skew    = std::max(skew, std::abs(consistent(i, j) - consistent(j, i)));
+    }
+  for (unsigned int i = 0; i < shell_dofs; ++i)
+    for (unsigned int j = 0; j < shell_dofs; ++j)
+    {
+      EXPECT_NEAR(symmetric(i, j), 0.5 * (consistent(i, j) + consistent(j, i)),
+                  1e-14 * largest);
+      EXPECT_EQ(symmetric(i, j), symmetric(j, i));
+    }
+  EXPECT_GT(skew, 1e-8 * largest); // a deformed state: there was a skew part
+}

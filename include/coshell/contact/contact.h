@@ -98,6 +98,11 @@ namespace coshell::contact
                                const dealii::Vector<double> &correction) const;
     void   save();
     void   restore();
+    /// Line search: the obstacles' positions before a trial evaluation,
+    /// put back after it (a trial advances them against a shell shape
+    /// that is then undone, which could leave them inside the shell).
+    void begin_trial();
+    void end_trial();
     /// Self contact: the shell vertex pairs whose unknowns the tangent
     /// will couple in the coming step (pairs within reach plus a margin
     /// of the largest thickness), each as (vertex, vertex).
@@ -221,6 +226,8 @@ namespace coshell::contact
     double                        smallest_gap_ = 0, largest_penetration_ = 0;
     mutable Timing                timing_;
     bool                          pending_ = false;
+    std::vector<std::vector<dealii::Point<3>>> trial_current_;
+    bool                                       trial_pending_ = false;
 
     /// Half the thickness of the pair's shell vertex, triangle or edge
     /// plus the obstacle's offset: the distance the pair must keep.
@@ -390,6 +397,8 @@ namespace coshell::contact
         const dealii::Vector<double> &correction) const override;
     void save() override;
     void restore() override;
+    void begin_trial() override;
+    void end_trial() override;
     bool symmetric_tangent() const override;
 
   private:

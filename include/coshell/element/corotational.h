@@ -21,6 +21,7 @@ namespace coshell::element
   enum class CorotationalTangent
   {
     consistent, ///< exact derivative of the force (non-symmetric in general)
+    symmetric,  ///< the symmetric part of the consistent tangent
     paper       ///< T K_l T^T: no geometric stiffness, no projector
   };
 

@@ -23,8 +23,11 @@ namespace coshell::io
     unsigned long n_dofs = 0, n_inactive_dofs = 0;
     /// Krylov iterations of the linear solve (1 for a direct solver).
     unsigned long linear_solver_iterations = 0;
-    PhaseTimes    wall_time_s;
-    unsigned int  load_steps = 0, newton_iterations = 0;
+    /// Factorizations CHOLMOD refused (not positive definite), done by
+    /// UMFPACK instead, over the run so far.
+    unsigned int cholmod_fallbacks = 0;
+    PhaseTimes   wall_time_s;
+    unsigned int load_steps = 0, newton_iterations = 0;
     /// Dynamics: time steps, simulated time (s) and the wall time the time
     /// stepping took (s), whose ratio is the real-time factor.
     unsigned int steps            = 0;

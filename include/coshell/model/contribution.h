@@ -123,6 +123,10 @@ namespace coshell::model
     /// Keep and go back to internal state along with the configuration.
     virtual void save() {}
     virtual void restore() {}
+    /// See NonlinearProblem::begin_trial(): undo what a trial evaluation
+    /// changed besides the iterate.
+    virtual void begin_trial() {}
+    virtual void end_trial() {}
 
     virtual bool symmetric_tangent() const = 0;
   };

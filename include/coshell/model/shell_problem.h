@@ -68,6 +68,8 @@ namespace coshell::model
         const dealii::Vector<double> &correction) const override;
     void save() override;
     void restore() override;
+    void begin_trial() override;
+    void end_trial() override;
     bool symmetric_tangent() const override;
 
     // solvers::EvolutionProblem

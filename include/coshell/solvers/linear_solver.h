@@ -48,6 +48,12 @@ namespace coshell::solvers
     unsigned int last_iterations() const;
     /// Wall-clock seconds spent in factorize() and solve() so far.
     double seconds() const;
+    /// Factorizations that CHOLMOD refused (not positive definite) and
+    /// UMFPACK did instead.
+    unsigned int cholmod_fallbacks() const
+    {
+      return cholmod_fallbacks_;
+    }
 
   private:
     std::string  method_                     = "cholmod";
@@ -55,6 +61,7 @@ namespace coshell::solvers
     unsigned int max_iterations_             = 10000;
     unsigned int last_iterations_            = 0;
     double       seconds_                    = 0;
+    unsigned int cholmod_fallbacks_          = 0;
     bool         rigid_body_near_null_space_ = true;
     std::string  amg_smoother_               = "Chebyshev";
     unsigned int amg_smoother_sweeps_        = 2;

@@ -63,6 +63,12 @@ namespace coshell::solvers
     virtual void save()    = 0;
     virtual void restore() = 0;
 
+    /// Around an evaluation at a trial iterate that will be undone (the
+    /// line search): end_trial() puts back what that evaluation changed
+    /// besides the iterate, e.g. obstacles moved against the trial shape.
+    virtual void begin_trial() {}
+    virtual void end_trial() {}
+
     /// Whether the tangent is symmetric (lets a Cholesky solver be used).
     virtual bool symmetric_tangent() const = 0;
   };
