@@ -107,7 +107,8 @@ namespace coshell::contact
                        const std::array<Point<3>, 4> &points,
                        const SquaredDistance         &s,
                        double                         weight,
-                       const ScalarDerivatives       &phi) const
+                       const ScalarDerivatives       &phi,
+                       bool                           with_hessian) const
   {
     const double  distance = std::sqrt(s.value);
     Coordinates12 dg;
@@ -137,7 +138,7 @@ namespace coshell::contact
     {
       const double dm_i  = dm_dc * c.gradient[i];
       energy.gradient[i] = weight * (m * phi.first * dg[i] + phi.value * dm_i);
-      for (unsigned int j = 0; j < 12; ++j)
+      for (unsigned int j = 0; j < 12 && with_hessian; ++j)
       {
         const double d2g = s.hessian[i][j] / (2 * distance) -
                            s.gradient[i] * s.gradient[j] /

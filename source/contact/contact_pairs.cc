@@ -374,8 +374,11 @@ namespace coshell::contact
         continue;
       const double weight =
           (barrier ? kappa_ : parameters_.penalty_stiffness) * pair.area;
-      const PairEnergy energy = pair_energy(pair, points, s, weight, phi);
-      const auto       shell  = shell_coordinates(pair);
+      // The tangent, and the anticipated obstacle move, need the Hessian.
+      const PairEnergy energy =
+          pair_energy(pair, points, s, weight, phi,
+                      with_tangent || (pending_ && !pair.self));
+      const auto shell = shell_coordinates(pair);
       pair_dofs(pair, block);
       for (unsigned int i = shell.first; i < shell.last; ++i)
         block.vector[i - shell.first] = -energy.gradient[i]; // on the shell

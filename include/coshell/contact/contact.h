@@ -282,12 +282,14 @@ namespace coshell::contact
                              const Tree  &obstacle_tree,
                              unsigned int o,
                              const std::vector<dealii::Tensor<1, 3>> *dX) const;
-    /// weight * m * phi and its derivatives for a pair at 'points'.
+    /// weight * m * phi and its derivatives for a pair at 'points' (the
+    /// Hessian only 'with_hessian': a residual needs the gradient alone).
     PairEnergy pair_energy(const Pair                    &pair,
                            const std::array<Point<3>, 4> &points,
                            const SquaredDistance         &s,
                            double                         weight,
-                           const ScalarDerivatives       &phi) const;
+                           const ScalarDerivatives       &phi,
+                           bool                           with_hessian) const;
     double     offset(unsigned int obstacle,
                       bool         shell_vertex_side,
                       unsigned int shell) const;
