@@ -1,9 +1,16 @@
-// A rigid plunger along the x axis: a flat face of radius 1.35 at x = 0
-// facing +x, on a rod of the same radius reaching back to x = -3 (mm).
-lc = 0.3;
+// A rigid plunger along the x axis: a flat face of radius plunger_radius
+// at x = 0 facing +x, on a rod of the same radius reaching back
+// plunger_length to x = -plunger_length (mm). Used by the funnel scene
+// and the IOL injection (prm/iol/injection.prm).
+DefineConstant[
+  plunger_radius = 1.35,  // mm
+  plunger_length = 3.0,   // mm
+  mesh_size = 0.3         // mm
+];
+lc = mesh_size;
 Point(1) = {0, 0, 0, lc};
-Point(2) = {0, 1.35, 0, lc};
-Point(3) = {-3, 1.35, 0, lc};
+Point(2) = {0, plunger_radius, 0, lc};
+Point(3) = {-plunger_length, plunger_radius, 0, lc};
 Line(1) = {1, 2};
 Line(2) = {2, 3};
 surfaces[] = {};

@@ -28,6 +28,13 @@ namespace coshell::contact
       return box;
     }
 
+    Point<3> centroid(const std::vector<Point<3>> &points)
+    {
+      Point<3> sum;
+      for (const auto &p : points)
+        sum += p;
+      return points.empty() ? sum : Point<3>(sum / double(points.size()));
+    }
   } // namespace
 
   Contact::Contact(const model::ShellModel &model,
@@ -77,6 +84,13 @@ namespace coshell::contact
     target_.resize(n);
     obstacle_trees_.resize(n);
     loads_.resize(n);
+    obstacle_work_.assign(n, 0.0);
+    potential_per_obstacle_.assign(n, 0.0);
+    saved_potential_per_obstacle_.assign(n, 0.0);
+    shell_force_.assign(n, Vector<double>(model.n_dofs()));
+    saved_shell_force_ = shell_force_;
+    for (const Obstacle &obstacle : parameters_.obstacles)
+      start_centroids_.push_back(centroid(obstacle.positions(0)));
     vertex_gap_.assign(vertices.size(), infinity);
     build_edges();
     if (parameters_.self_contact)
@@ -148,6 +162,24 @@ namespace coshell::contact
   const std::vector<ObstacleLoad> &Contact::obstacle_loads() const
   {
     return loads_;
+  }
+
+  std::vector<double> Contact::obstacle_work() const
+  {
+    std::vector<double> work = obstacle_work_;
+    for (unsigned int o = 0; o < work.size(); ++o)
+      work[o] += step_work(o);
+    return work;
+  }
+
+  double Contact::potential() const
+  {
+    return potential_;
+  }
+
+  Tensor<1, 3> Contact::obstacle_displacement(unsigned int o) const
+  {
+    return centroid(current_[o]) - start_centroids_[o];
   }
 
   const std::vector<Obstacle> &Contact::obstacles() const
@@ -367,12 +399,51 @@ namespace coshell::contact
     find_pairs(positions_, shell_tree);
   }
 
+  /// The work obstacle o's motion did on the shell since the last save():
+  /// with E_o the energy of its pairs and f_o their force on the shell,
+  /// dE_o = -f_o . du + (the obstacle's share), so the work its driver put
+  /// in is dE_o + f_o . du, the shell's part by the trapezoidal rule on
+  /// the shell's translations (the rule of the scene's other works). Exact
+  /// for any rigid motion, rotations included, and for an obstacle that
+  /// lags behind its prescribed position and catches up.
+  double Contact::step_work(unsigned int o) const
+  {
+    if (saved_positions_.size() != positions_.size())
+      return 0;
+    const Vector<double> &now    = shell_force_[o],
+                         &before = saved_shell_force_[o];
+    double shell_work            = 0;
+    for (const unsigned int v : shell_vertices_)
+    {
+      const auto &dofs = model_.vertex_dofs(v);
+      for (unsigned int d = 0; d < 3; ++d)
+        shell_work += 0.5 * (now[dofs[d]] + before[dofs[d]]) *
+                      (positions_[v][d] - saved_positions_[v][d]);
+    }
+    return potential_per_obstacle_[o] - saved_potential_per_obstacle_[o] +
+           shell_work;
+  }
+
+  void Contact::add_shell_force(const Pair &pair, const model::DofBlock &block)
+  {
+    for (unsigned int i = 0; i < block.dofs.size(); ++i)
+      vertex_force_[block.dofs[i]] += block.vector[i];
+    if (!pair.self)
+      for (unsigned int i = 0; i < block.dofs.size(); ++i)
+        shell_force_[pair.obstacle][block.dofs[i]] += block.vector[i];
+  }
+
   void Contact::save()
   {
-    saved_                = current_;
-    saved_positions_      = positions_;
-    saved_time_           = target_time_;
-    lagged_normal_forces_ = normal_forces_;
+    retrying_ = false;
+    for (unsigned int o = 0; o < obstacle_work_.size(); ++o)
+      obstacle_work_[o] += step_work(o);
+    saved_shell_force_            = shell_force_;
+    saved_potential_per_obstacle_ = potential_per_obstacle_;
+    saved_                        = current_;
+    saved_positions_              = positions_;
+    saved_time_                   = target_time_;
+    lagged_normal_forces_         = normal_forces_;
     if (parameters_.method == Method::barrier &&
         smallest_gap_ < parameters_.stiffening_gap_ratio * activation_)
       kappa_ *= 2; // the barrier is getting too stiff a spring: stiffen it
@@ -399,6 +470,7 @@ namespace coshell::contact
 
   void Contact::restore()
   {
+    retrying_ = parameters_.project_tangent_on_retry;
     if (saved_.empty())
       return;
     current_ = saved_;

@@ -134,6 +134,7 @@ namespace coshell::contact
       }
     }
     PairEnergy energy;
+    energy.value = weight * m * phi.value;
     for (unsigned int i = 0; i < 12; ++i)
     {
       const double dm_i  = dm_dc * c.gradient[i];

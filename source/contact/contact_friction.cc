@@ -78,8 +78,7 @@ namespace coshell::contact
       if (with_tangent)
         block.matrix = 0;
       add_friction(lagged, with_tangent, block);
-      for (unsigned int i = 0; i < block.dofs.size(); ++i)
-        vertex_force_[block.dofs[i]] += block.vector[i];
+      add_shell_force(lagged.pair, block);
       sink(block);
     }
   }

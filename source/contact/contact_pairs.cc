@@ -355,7 +355,12 @@ namespace coshell::contact
     for (auto &load : loads_)
       load = ObstacleLoad();
     self_active_pairs_ = 0;
+    potential_         = 0;
     vertex_force_      = 0;
+    std::fill(potential_per_obstacle_.begin(), potential_per_obstacle_.end(),
+              0.0);
+    for (auto &force : shell_force_)
+      force = 0;
     std::fill(vertex_gap_.begin(), vertex_gap_.end(),
               std::numeric_limits<double>::infinity());
     model::DofBlock block;
@@ -385,6 +390,9 @@ namespace coshell::contact
       if (with_tangent)
         pair_hessian(energy, shell, block.matrix);
       record_pair(pair, points, energy.gradient, gap, block);
+      potential_ += energy.value;
+      if (!pair.self)
+        potential_per_obstacle_[pair.obstacle] += energy.value;
       // |d E / d distance| is the normal force of the pair, which
       // friction will use in the next step (self contact and edge-edge
       // pairs are frictionless).
@@ -442,7 +450,7 @@ namespace coshell::contact
     for (unsigned int i = 0; i < n; ++i)
       for (unsigned int j = 0; j < n; ++j)
         h[i * n + j] = energy.hessian[first + i][first + j];
-    if (parameters_.project_tangent)
+    if (parameters_.project_tangent || retrying_)
       project_to_positive_semidefinite(h, n);
     for (unsigned int i = 0; i < n; ++i)
       for (unsigned int j = 0; j < n; ++j)
@@ -472,8 +480,7 @@ namespace coshell::contact
       ++self_active_pairs_;
     else
       ++loads_[pair.obstacle].active_pairs;
-    for (unsigned int i = 0; i < block.dofs.size(); ++i)
-      vertex_force_[block.dofs[i]] += block.vector[i];
+    add_shell_force(pair, block);
     const auto mark = [&](unsigned v)
     { vertex_gap_[v] = std::min(vertex_gap_[v], gap); };
     if (pair.edge_edge)

@@ -43,6 +43,12 @@ namespace coshell::contact
                       "Project each pair's Hessian onto the positive "
                       "semi-definite matrices (as IPC does) so that Newton "
                       "steps descend; false: the exact Hessian.");
+    prm.declare_entry("Projected tangent on retry", "false", Patterns::Bool(),
+                      "With Projected tangent = false: a step that failed is "
+                      "retried with the projected Hessians (until a step "
+                      "succeeds), whose Newton steps descend where the "
+                      "exact ones, faster elsewhere, can stall against "
+                      "the collision filter.");
     prm.declare_entry(
         "Pairs", "all", Patterns::Selection("all|local minima"),
         "all: every shell vertex-obstacle triangle and obstacle vertex-shell "
@@ -85,21 +91,22 @@ namespace coshell::contact
                                            const std::string &prm_directory)
   {
     prm.enter_subsection("Contact");
-    const std::string name = prm.get("Method");
-    method                 = name == "barrier"   ? Method::barrier
-                             : name == "penalty" ? Method::penalty
-                                                 : Method::none;
-    activation_distance    = prm.get_double("Activation distance");
-    barrier_stiffness      = prm.get_double("Barrier stiffness");
-    stiffening_gap_ratio   = prm.get_double("Stiffening gap ratio");
-    penalty_stiffness      = prm.get_double("Penalty stiffness");
-    penalty_smoothing      = prm.get_double("Penalty smoothing");
-    project_tangent        = prm.get_bool("Projected tangent");
-    stiction_velocity      = prm.get_double("Stiction velocity");
-    local_minima_only      = prm.get("Pairs") == "local minima";
-    self_contact           = prm.get_bool("Self contact");
-    edge_edge_pairs        = prm.get_bool("Edge-edge pairs");
-    self_exclusion         = prm.get_double("Self contact exclusion");
+    const std::string name   = prm.get("Method");
+    method                   = name == "barrier"   ? Method::barrier
+                               : name == "penalty" ? Method::penalty
+                                                   : Method::none;
+    activation_distance      = prm.get_double("Activation distance");
+    barrier_stiffness        = prm.get_double("Barrier stiffness");
+    stiffening_gap_ratio     = prm.get_double("Stiffening gap ratio");
+    penalty_stiffness        = prm.get_double("Penalty stiffness");
+    penalty_smoothing        = prm.get_double("Penalty smoothing");
+    project_tangent          = prm.get_bool("Projected tangent");
+    project_tangent_on_retry = prm.get_bool("Projected tangent on retry");
+    stiction_velocity        = prm.get_double("Stiction velocity");
+    local_minima_only        = prm.get("Pairs") == "local minima";
+    self_contact             = prm.get_bool("Self contact");
+    edge_edge_pairs          = prm.get_bool("Edge-edge pairs");
+    self_exclusion           = prm.get_double("Self contact exclusion");
     try
     {
       // Off costs nothing: the obstacle meshes are not even read.

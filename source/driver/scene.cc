@@ -108,6 +108,7 @@ namespace coshell::driver
 
   void Scene::declare_parameters(ParameterHandler &prm)
   {
+    io::Constants::declare_parameters(prm);
     mesh::MeshParameters::declare_parameters(prm);
     model::ElementParameters::declare_parameters(prm);
     model::BoundaryConditions::declare_parameters(prm);
@@ -151,6 +152,8 @@ namespace coshell::driver
                                const std::string &prm_file)
   {
     prm_file_ = prm_file;
+    // First: every expression parsed below may use the constants.
+    io::Constants::parse_parameters(prm);
     mesh_.parse_parameters(
         prm, std::filesystem::path(prm_file).parent_path().string());
     element_.parse_parameters(prm);
@@ -472,6 +475,11 @@ namespace coshell::driver
     /// time integrator itself conserves energy with at rho_inf = 1.
     double         external_work = 0, dissipated_energy = 0;
     Vector<double> generalized_force, damping_force;
+    /// The work of every contact force on the shell (obstacles, friction,
+    /// self contact), trapezoidal like the others, and the contact force
+    /// of the last step.
+    double         contact_work = 0;
+    Vector<double> contact_force;
   };
 
   namespace
@@ -527,6 +535,7 @@ namespace coshell::driver
     out.largest_penetration =
         std::max(out.largest_penetration, out.contact->largest_penetration());
     const auto &loads = out.contact->obstacle_loads();
+    const auto  work  = out.contact->obstacle_work();
     for (unsigned int o = 0; o < loads.size(); ++o)
     {
       std::vector<double> row = {double(step), time, double(o + 1)};
@@ -536,13 +545,49 @@ namespace coshell::driver
         row.push_back(loads[o].moment[d]);
       row.push_back(loads[o].active_pairs);
       row.push_back(out.contact->smallest_gap());
+      row.push_back(work[o]);
+      const Tensor<1, 3> moved = out.contact->obstacle_displacement(o);
+      for (unsigned int d = 0; d < 3; ++d)
+        row.push_back(moved[d]);
       out.contact_forces->row(row);
     }
     // Self contact: obstacle 0, no net force (internal to the shell).
     if (out.contact->self_contact())
       out.contact_forces->row({double(step), time, 0, 0, 0, 0, 0, 0, 0,
                                double(out.contact->self_active_pairs()),
-                               out.contact->smallest_gap()});
+                               out.contact->smallest_gap(), 0, 0, 0, 0});
+  }
+
+  /// The quantities of interest of a dynamic step, with the largest
+  /// strains if asked for ('internal' null: before the first step, zero).
+  std::map<std::string, double>
+  Scene::step_quantities(const model::ShellModel    &model,
+                         const model::ShellState    &state,
+                         const model::InternalForce *internal) const
+  {
+    auto values = quantities_.evaluate(model, state.values());
+    if (quantities_.largest_strains())
+    {
+      model::LargestStrains largest;
+      if (internal)
+        largest = model::largest_strains(model, internal->resultants(state));
+      values["max_membrane_strain"] = largest.membrane;
+      values["max_bending_strain"]  = largest.bending;
+    }
+    return values;
+  }
+
+  /// The step's work of the contact forces on the shell (trapezoidal on
+  /// the step increment q).
+  void Scene::add_contact_work(const model::ShellProblem &problem,
+                               const Vector<double>      &q,
+                               StagedOutput              &out)
+  {
+    if (!out.contact)
+      return;
+    const Vector<double> &force = problem.force(model::ForceKind::contact);
+    out.contact_work += 0.5 * ((force * q) + (out.contact_force * q));
+    out.contact_force = force;
   }
 
   void Scene::run_dynamic_stage(const Stage         &stage,
@@ -565,6 +610,8 @@ namespace coshell::driver
     working_forces(problem, out.generalized_force);
     out.damping_force.reinit(model.n_dofs());
     inertia->measures(state, &out.damping_force);
+    if (out.contact)
+      out.contact_force = problem.force(model::ForceKind::contact);
     Vector<double> damping_force(model.n_dofs());
 
     const auto wall    = std::chrono::steady_clock::now();
@@ -579,9 +626,10 @@ namespace coshell::driver
           inertia->measures(state, &damping_force);
       out.dissipated_energy +=
           0.5 * ((damping_force * q) + (out.damping_force * q));
-      out.damping_force          = damping_force;
+      out.damping_force = damping_force;
+      add_contact_work(problem, q, out);
       const double strain_energy = internal->strain_energy(state);
-      result.qoi                 = quantities_.evaluate(model, state.values());
+      result.qoi                 = step_quantities(model, state, internal);
       std::vector<double> row    = {double(step),
                                     record.time,
                                     record.dt,
@@ -595,6 +643,8 @@ namespace coshell::driver
         row.push_back(kinetic.linear_momentum[d]);
       for (unsigned int d = 0; d < 3; ++d)
         row.push_back(kinetic.angular_momentum[d]);
+      row.push_back(out.contact_work);
+      row.push_back(out.contact ? out.contact->potential() : 0.0);
       for (const auto &[name, value] : result.qoi)
         row.push_back(value);
       row.push_back(stage.number);
@@ -795,8 +845,8 @@ namespace coshell::driver
                "strain_energy", "external_work", "dissipated_energy",
                "total_energy", "linear_momentum_x", "linear_momentum_y",
                "linear_momentum_z", "angular_momentum_x", "angular_momentum_y",
-               "angular_momentum_z"},
-              quantities_.evaluate(model, state.values()), {"stage"}));
+               "angular_momentum_z", "contact_work", "contact_energy"},
+              step_quantities(model, state, nullptr), {"stage"}));
       model::Inertia(model, inertia_).set_initial_velocity(state);
       state.save();
     }
@@ -810,7 +860,7 @@ namespace coshell::driver
           directory + "/contact_forces.csv",
           std::vector<std::string>{"step", "time", "obstacle", "fx", "fy", "fz",
                                    "mx", "my", "mz", "active_pairs",
-                                   "min_distance"});
+                                   "min_distance", "work", "ux", "uy", "uz"});
     }
     double start_time = 0;
     for (const Stage &stage : stages_.list())

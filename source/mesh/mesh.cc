@@ -148,14 +148,29 @@ namespace coshell::mesh
       for (const auto &[name, value] : constants)
         command << " -setnumber " << name << ' ' << std::setprecision(17)
                 << value;
-      command << " -o '" << output.string() << "' '" << geo_file
-              << "' > /dev/null 2>&1";
-      if (std::system(command.str().c_str()) != 0 ||
-          !std::filesystem::exists(output))
-        throw std::runtime_error("gmsh could not mesh '" + geo_file +
-                                 "' (is the gmsh executable installed? "
-                                 "command: " +
-                                 command.str() + ")");
+      // gmsh's own messages go to a log beside the mesh: its first error
+      // line (a .geo file's Error() explains a bad parameter) is shown.
+      const std::string log = output.string() + ".log";
+      command << " -o '" << output.string() << "' '" << geo_file << "' > '"
+              << log << "' 2>&1";
+      const bool meshed = std::system(command.str().c_str()) == 0 &&
+                          std::filesystem::exists(output);
+      std::string   error_line;
+      std::ifstream gmsh_log(log);
+      for (std::string line; !meshed && std::getline(gmsh_log, line);)
+        if (line.rfind("Error", 0) == 0)
+        {
+          error_line = Utilities::trim(line);
+          break;
+        }
+      std::filesystem::remove(log);
+      if (!meshed)
+        throw std::runtime_error("gmsh could not mesh '" + geo_file + "'" +
+                                 (error_line.empty()
+                                      ? std::string(" (is the gmsh executable "
+                                                    "installed? command: " +
+                                                    command.str() + ")")
+                                      : ": " + error_line));
       return output.string();
     }
 
@@ -183,23 +198,7 @@ namespace coshell::mesh
   GmshConstants parse_gmsh_constants(const std::string &text,
                                      const std::string &where)
   {
-    GmshConstants constants;
-    for (const auto &entry : Utilities::split_string_list(text, ','))
-    {
-      const auto parts = Utilities::split_string_list(entry, '=');
-      const auto name  = parts.empty() ? std::string() : parts[0];
-      const bool named =
-          !name.empty() && !std::isdigit(name[0]) &&
-          std::all_of(name.begin(), name.end(),
-                      [](char c) { return std::isalnum(c) || c == '_'; });
-      const auto value =
-          parts.size() == 2 ? io::as_number(parts[1]) : std::optional<double>();
-      if (!named || !value)
-        throw std::invalid_argument(where + ": '" + entry +
-                                    "' is not of the form 'name = number'");
-      constants.emplace_back(name, *value);
-    }
-    return constants;
+    return io::parse_named_numbers(text, where);
   }
 
   void read_gmsh(Surface             &surface,

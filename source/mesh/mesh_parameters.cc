@@ -1,4 +1,7 @@
+#include <coshell/io/expressions.h>
 #include <coshell/mesh/mesh.h>
+
+#include <deal.II/grid/grid_tools.h>
 
 #include <deal.II/base/utilities.h>
 
@@ -63,6 +66,13 @@ namespace coshell::mesh
                       "across edges and each connected patch is turned to "
                       "face this direction; pressure acts along these "
                       "normals.");
+    prm.declare_entry("Vertex transformation", "x; y; z", Patterns::Anything(),
+                      "New position of every mesh vertex as three "
+                      "expressions of its position x, y, z separated by ';' "
+                      "(length units), applied after the mesh is built or "
+                      "refined: an imperfection, a curved mid-surface (e.g. "
+                      "an optic's sag), a change of frame. The result is "
+                      "the stress-free reference configuration.");
     prm.leave_subsection();
   }
 
@@ -96,7 +106,13 @@ namespace coshell::mesh
     const std::vector<double> normal = Utilities::string_to_double(
         Utilities::split_string_list(prm.get("Normal reference")));
     normal_reference = Tensor<1, 3>({normal[0], normal[1], normal[2]});
+    const std::string transformation = prm.get("Vertex transformation");
     prm.leave_subsection();
+    vertex_transformation.reset();
+    if (Utilities::trim(transformation) != "x; y; z")
+      vertex_transformation =
+          io::parse_expressions<3>(transformation, 3, "x,y,z", false, "x, y, z",
+                                   "Mesh/Vertex transformation");
     if (source == "gmsh" && gmsh_file.empty())
       throw std::invalid_argument(
           "Mesh/Gmsh file must be set when Mesh/Source = gmsh");
@@ -117,6 +133,16 @@ namespace coshell::mesh
       read_gmsh(surface, gmsh_file, 0, gmsh_constants);
       surface.refine_global(level);
     }
+    if (vertex_transformation)
+      GridTools::transform(
+          [this](const Point<3> &p)
+          {
+            Point<3> moved;
+            for (unsigned int d = 0; d < 3; ++d)
+              moved[d] = vertex_transformation->value(p, d);
+            return moved;
+          },
+          surface);
     check_cells(surface);
   }
 } // namespace coshell::mesh

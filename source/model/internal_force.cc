@@ -129,4 +129,45 @@ namespace coshell::model
     }
     return result;
   }
+
+  namespace
+  {
+    /// Largest principal value in magnitude of the symmetric 2 x 2 tensor
+    /// (xx, yy, xy).
+    double largest_principal(double xx, double yy, double xy)
+    {
+      const double centre = 0.5 * (xx + yy);
+      const double radius = std::hypot(0.5 * (xx - yy), xy);
+      return std::abs(centre) + radius;
+    }
+  } // namespace
+
+  /// Plane stress: eps = (N_xx - nu N_yy, N_yy - nu N_xx, (1 + nu) N_xy)
+  /// / (E h) (tensor shear component), and the curvature likewise from
+  /// M with 12 / (E h^3); the surface strain is h/2 times the curvature.
+  LargestStrains
+  largest_strains(const ShellModel                            &model,
+                  const std::vector<element::ShellResultants> &resultants)
+  {
+    LargestStrains largest;
+    for (const auto &cell : model.dof_handler().active_cell_iterators())
+    {
+      const auto  &m  = model.material(cell);
+      const auto  &r  = resultants[cell->active_cell_index()];
+      const double nu = m.poisson_ratio, h = m.thickness;
+      const auto  &n = r.membrane_local;
+      const auto  &b = r.bending_local;
+      const double membrane =
+          largest_principal(n[0] - nu * n[1], n[1] - nu * n[0],
+                            (1 + nu) * n[2]) /
+          (m.youngs_modulus * h);
+      const double bending =
+          largest_principal(b[0] - nu * b[1], b[1] - nu * b[0],
+                            (1 + nu) * b[2]) *
+          6 / (m.youngs_modulus * h * h);
+      largest.membrane = std::max(largest.membrane, membrane);
+      largest.bending  = std::max(largest.bending, bending);
+    }
+    return largest;
+  }
 } // namespace coshell::model

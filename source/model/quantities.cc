@@ -62,6 +62,13 @@ namespace coshell::model
                       "rz). Load control stops exactly at these load "
                       "factors; the points are written to "
                       "reference_points.csv and plotted.");
+    prm.declare_entry("Largest strains", "false", Patterns::Bool(),
+                      "Dynamic runs: also write, per step, the largest "
+                      "principal membrane strain and the largest bending "
+                      "strain at the surfaces (h/2 times the principal "
+                      "curvature) over the cells, as max_membrane_strain "
+                      "and max_bending_strain (dimensionless), from the "
+                      "stress resultants and the cell's material.");
     prm.leave_subsection();
   }
 
@@ -72,6 +79,7 @@ namespace coshell::model
     const std::string maxima     = prm.get("Maximum values");
     const std::string references = prm.get("Reference values");
     const std::string curves     = prm.get("Reference curves");
+    largest_strains_             = prm.get_bool("Largest strains");
     prm.leave_subsection();
 
     point_values_.clear();

@@ -151,10 +151,15 @@ namespace coshell::solvers
         return iteration;
       }
       if (iteration == parameters_.max_iterations)
-        throw NewtonFailure("Newton did not converge in " +
-                            std::to_string(parameters_.max_iterations) +
-                            " iterations (relative residual " +
-                            short_number(relative_residual) + ")");
+        throw NewtonFailure(
+            "Newton did not converge in " +
+            std::to_string(parameters_.max_iterations) +
+            " iterations (relative residual " +
+            short_number(relative_residual) + ")" +
+            (pending ? "; a prescribed move is still pending: an obstacle "
+                       "or a prescribed motion cannot reach its position "
+                       "(the shell is in its way: a jam)"
+                     : ""));
       Vector<double> du     = correction(problem, tangent, residual);
       const double   energy = std::abs(du * residual);
       if (iteration == 0)

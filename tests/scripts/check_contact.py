@@ -27,6 +27,10 @@ outputs) against references given here.
                           lowest edge (a knife's) over the shell's deformed
                           mid-surface, smallest along the edge, lies in
                           [LO, HI] (negative: the edge cut through)
+     [--energy-balance TOL]  the work of the moving obstacles on the shell
+                          (plus the external work) equals its strain and
+                          kinetic energy, the drag's dissipation and the
+                          barrier's energy within TOL of that work
      [--report FILE]      append 'test,name,value' lines of what was measured
 Prints a line per check and 'N passed, M failed'; exits 1 on a failure.
 """
@@ -37,7 +41,7 @@ import math
 import os
 import sys
 
-from scene_runner import add_scene_arguments, run_scene
+from scene_runner import add_scene_arguments, energy_balance, run_scene
 
 
 def read_rows(path):
@@ -119,6 +123,7 @@ def main():
     parser.add_argument("--force-range", nargs=4, action="append", default=[])
     parser.add_argument("--summary", nargs=3, action="append", default=[])
     parser.add_argument("--edge-clearance", nargs=2, type=float)
+    parser.add_argument("--energy-balance", type=float)
     parser.add_argument("--report")
     args = parser.parse_args()
 
@@ -210,6 +215,19 @@ def main():
         lo, hi = args.edge_clearance
         check(lo <= clearance <= hi, f"clearance of the obstacles' lowest edge "
               f"over the mid-surface {clearance:.6g} in [{lo}, {hi}]")
+    if args.energy_balance is not None:
+        energies = energy_balance(quantity_rows(args.output), forces)
+        supplied = sum(energies["obstacle_work"].values())
+        share = abs(energies["remainder"]) / supplied
+        measured.append(("energy_remainder_share", share))
+        check(share <= args.energy_balance,
+              f"energy: the obstacles' work {supplied:.6g} = strain "
+              f"{energies['strain_energy']:.6g} + kinetic "
+              f"{energies['kinetic_energy']:.3g} + drag "
+              f"{energies['dissipated_energy']:.6g} + barrier "
+              f"{energies['contact_energy']:.3g} (+ external "
+              f"{energies['external_work']:.3g}) within "
+              f"{share:.3g} <= {args.energy_balance} of it")
     if args.report:
         test = os.path.basename(os.path.normpath(args.output))
         with open(args.report, "a") as f:

@@ -45,6 +45,27 @@ def read_rows(path):
         return list(csv.DictReader(f))
 
 
+def energy_balance(history, forces):
+    """The energies at the last step of a dynamic run with contact: the
+    work the moving obstacles did on the shell (contact_forces.csv 'work',
+    per obstacle), the external work, and the shell's strain and kinetic
+    energy, the energy dissipated by drag and damping and the barrier (or
+    penalty) energy stored in contact (time_history.csv). 'remainder' is
+    what the first two supplied and the others do not hold: the friction's
+    dissipation and the integrator's error."""
+    last = history[-1]
+    works = {int(r["obstacle"]): float(r["work"]) for r in forces
+             if r["step"] == last["step"] and int(r["obstacle"]) > 0}
+    energies = {name: float(last[name]) for name in
+                ("external_work", "strain_energy", "kinetic_energy",
+                 "dissipated_energy", "contact_energy")}
+    held = sum(energies.values()) - energies["external_work"]
+    energies["obstacle_work"] = works
+    energies["remainder"] = (sum(works.values()) + energies["external_work"]
+                             - held)
+    return energies
+
+
 def add_strip_arguments(parser):
     """The strip of the contact wrap and roll-up checkers: its length
     (the loaded part), thickness, bending stiffness EI and largest end

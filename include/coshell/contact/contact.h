@@ -40,6 +40,8 @@ namespace coshell::contact
     /// activation distance doubles the barrier stiffness (dimensionless).
     double stiffening_gap_ratio = 1e-3;
     bool   project_tangent      = true;
+    /// Project the Hessians while retrying a failed step.
+    bool project_tangent_on_retry = false;
     /// Keep only pairs whose distance is a local minimum over the surface.
     bool local_minima_only = false;
     /// Friction: tangential speed below which friction is smoothed (the
@@ -96,8 +98,10 @@ namespace coshell::contact
                           bool                     with_tangent);
     double admissible_fraction(const model::ShellState      &state,
                                const dealii::Vector<double> &correction) const;
-    void   save();
-    void   restore();
+    /// Ends a step: the step's state becomes the one to restore, and the
+    /// obstacles' work is brought up to date.
+    void save();
+    void restore();
     /// Line search: the obstacles' positions before a trial evaluation,
     /// put back after it (a trial advances them against a shell shape
     /// that is then undone, which could leave them inside the shell).
@@ -120,7 +124,20 @@ namespace coshell::contact
 
     /// Per obstacle, at the last evaluation.
     const std::vector<ObstacleLoad> &obstacle_loads() const;
-    const std::vector<Obstacle>     &obstacles() const;
+    /// Per obstacle, the work its prescribed motion has done on the shell
+    /// up to the last evaluation, N mm: the change of its pairs' energy
+    /// plus the work of their force on the shell (see step_work()). This
+    /// is the energy a plunger puts in; a fixed obstacle puts in none
+    /// beyond what friction on it dissipates (negative).
+    std::vector<double> obstacle_work() const;
+    /// How far obstacle o's centroid has moved since time 0 (as far as
+    /// the step filter has let it), length.
+    dealii::Tensor<1, 3> obstacle_displacement(unsigned int o) const;
+    /// The barrier (or penalty) energy of every pair at the last
+    /// evaluation, N mm: the energy contact stores, which the balance of
+    /// a scene's energies must count.
+    double                       potential() const;
+    const std::vector<Obstacle> &obstacles() const;
     /// Smallest gap (distance minus offsets) over every evaluation since
     /// the last save() (+inf if no pair was within reach), length.
     double smallest_gap() const;
@@ -176,6 +193,7 @@ namespace coshell::contact
     /// and Hessian.
     struct PairEnergy
     {
+      double        value = 0;
       Coordinates12 gradient{};
       Matrix12      hessian{};
     };
@@ -221,11 +239,21 @@ namespace coshell::contact
     std::vector<dealii::Point<3>> saved_positions_; ///< at save()
     double                        saved_time_ = 0;
     std::vector<ObstacleLoad>     loads_;
-    std::vector<double>           vertex_gap_;
-    dealii::Vector<double>        vertex_force_;
-    double                        smallest_gap_ = 0, largest_penetration_ = 0;
-    mutable Timing                timing_;
-    bool                          pending_ = false;
+    std::vector<double>           obstacle_work_; ///< up to save()
+    /// Per obstacle, its pairs' energy and their force on the shell (DoF
+    /// layout), at the last evaluation and at save().
+    std::vector<double>                 potential_per_obstacle_;
+    std::vector<double>                 saved_potential_per_obstacle_;
+    std::vector<dealii::Vector<double>> shell_force_, saved_shell_force_;
+    std::vector<dealii::Point<3>>       start_centroids_; ///< at time 0
+    double                              potential_ = 0;
+    std::vector<double>                 vertex_gap_;
+    dealii::Vector<double>              vertex_force_;
+    double         smallest_gap_ = 0, largest_penetration_ = 0;
+    mutable Timing timing_;
+    bool           pending_ = false;
+    /// Since a failed step (restore()) and until the next save().
+    bool                                       retrying_ = false;
     std::vector<std::vector<dealii::Point<3>>> trial_current_;
     bool                                       trial_pending_ = false;
 
@@ -234,6 +262,11 @@ namespace coshell::contact
     double offset(const Pair &pair) const;
     /// The same for shell edge e (the mean of its vertices' offsets).
     double edge_offset(unsigned int obstacle, unsigned int e) const;
+    /// Obstacle o's work since the last save().
+    double step_work(unsigned int o) const;
+    /// Adds a pair's force block to the vertex force field and to its
+    /// obstacle's force on the shell.
+    void add_shell_force(const Pair &pair, const model::DofBlock &block);
     /// Lists the shell's and the obstacles' edges (constructor).
     void build_edges();
     class PairSelector;

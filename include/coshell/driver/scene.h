@@ -9,6 +9,7 @@
 #include <coshell/model/boundary_conditions.h>
 #include <coshell/model/element_parameters.h>
 #include <coshell/model/inertia.h>
+#include <coshell/model/internal_force.h>
 #include <coshell/model/loads.h>
 #include <coshell/model/prescribed_motions.h>
 #include <coshell/model/quantities.h>
@@ -105,20 +106,27 @@ namespace coshell::driver
     /// Appends the step's rows to contact_forces.csv.
     void
     record_contact(StagedOutput &out, unsigned int step, double time) const;
-    void run_static_stage(const Stage         &stage,
-                          model::ShellProblem &problem,
-                          StagedOutput        &out,
-                          io::LevelResult     &result,
-                          const std::string   &directory,
-                          std::ostream        &log);
-    void run_dynamic_stage(const Stage         &stage,
-                           model::ShellProblem &problem,
-                           double               start_time,
-                           StagedOutput        &out,
-                           io::LevelResult     &result,
-                           const std::string   &directory,
-                           std::ostream        &log);
-    bool has_dynamic_stage() const;
+    std::map<std::string, double>
+                step_quantities(const model::ShellModel    &model,
+                                const model::ShellState    &state,
+                                const model::InternalForce *internal) const;
+    static void add_contact_work(const model::ShellProblem    &problem,
+                                 const dealii::Vector<double> &q,
+                                 StagedOutput                 &out);
+    void        run_static_stage(const Stage         &stage,
+                                 model::ShellProblem &problem,
+                                 StagedOutput        &out,
+                                 io::LevelResult     &result,
+                                 const std::string   &directory,
+                                 std::ostream        &log);
+    void        run_dynamic_stage(const Stage         &stage,
+                                  model::ShellProblem &problem,
+                                  double               start_time,
+                                  StagedOutput        &out,
+                                  io::LevelResult     &result,
+                                  const std::string   &directory,
+                                  std::ostream        &log);
+    bool        has_dynamic_stage() const;
     /// Runs the time integration of a dynamic stage from 'start' to
     /// 'end', or, when driven interactively, to each target read until
     /// the stage's end, "quit" or the end of the input; returns the time

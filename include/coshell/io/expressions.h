@@ -1,5 +1,7 @@
 #pragma once
 
+#include <coshell/io/constants.h>
+
 #include <deal.II/base/function_parser.h>
 #include <deal.II/base/numbers.h>
 #include <deal.II/base/point.h>
@@ -28,8 +30,9 @@ namespace coshell::io
 
   /// A muparser function with 'n_components' expressions separated by ';'
   /// in 'text', of the variables 'variables' (deal.II names, e.g. "x,y,z",
-  /// or "x,t" with 'time_dependent'), with pi defined. Evaluated once here,
-  /// so a bad expression fails at parse time. Throws std::invalid_argument
+  /// or "x,t" with 'time_dependent'), with pi and the scene's Constants.
+  /// Evaluated once here, so a bad expression fails at parse time. Throws
+  /// std::invalid_argument
   /// "<where>: ..." naming the text and what was expected ('described', e.g.
   /// "t" or "x, y, z").
   template<int dim>
@@ -51,8 +54,8 @@ namespace coshell::io
     auto function = std::make_unique<dealii::FunctionParser<dim>>(n_components);
     try
     {
-      function->initialize(variables, expressions,
-                           {{"pi", dealii::numbers::PI}}, time_dependent);
+      function->initialize(variables, expressions, expression_constants(),
+                           time_dependent);
       dealii::Vector<double> values(n_components);
       function->vector_value(dealii::Point<dim>(), values);
     }

@@ -1,9 +1,11 @@
 #pragma once
 
+#include <deal.II/base/function_parser.h>
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/tensor.h>
 #include <deal.II/grid/tria.h>
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -71,6 +73,8 @@ namespace coshell::mesh
     unsigned int              subdivisions_x = 4, subdivisions_y = 4;
     std::vector<unsigned int> refinement_levels{0};
     dealii::Tensor<1, 3>      normal_reference;
+    /// Maps every vertex after the mesh is built; null: identity.
+    std::shared_ptr<dealii::FunctionParser<3>> vertex_transformation;
 
     static void declare_parameters(dealii::ParameterHandler &prm);
     void        parse_parameters(dealii::ParameterHandler &prm,

@@ -46,6 +46,17 @@ namespace coshell::model
     double cell_energy(const CellIterator &cell, const ShellState &state) const;
   };
 
+  /// The largest principal membrane strain and bending surface strain
+  /// (h/2 times the principal curvature) over the cells, in magnitude,
+  /// recovered from the resultants through each cell's isotropic material.
+  struct LargestStrains
+  {
+    double membrane = 0, bending = 0;
+  };
+  LargestStrains
+  largest_strains(const ShellModel                            &model,
+                  const std::vector<element::ShellResultants> &resultants);
+
   /// The triangle of a cell in the current configuration of 'state'.
   element::SpatialTriangle current_triangle(const ShellModel   &model,
                                             const CellIterator &cell,

@@ -31,6 +31,11 @@ namespace coshell::model
     const std::map<std::string, Curve> &reference_curves() const;
     /// Every load factor at which some reference curve has a point.
     std::vector<double> reference_load_factors() const;
+    /// Whether dynamic runs also report the largest strains per step.
+    bool largest_strains() const
+    {
+      return largest_strains_;
+    }
 
   private:
     struct PointValue
@@ -48,6 +53,7 @@ namespace coshell::model
     std::vector<MaximumValue>     maximum_values_;
     std::map<std::string, double> references_;
     std::map<std::string, Curve>  reference_curves_;
+    bool                          largest_strains_ = false;
 
     void check_defined(const std::string &name,
                        const std::string &parameter) const;

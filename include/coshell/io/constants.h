@@ -1,0 +1,37 @@
+#pragma once
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace coshell::io
+{
+  /// The named constants of a scene (prm subsection "Constants"), usable in
+  /// every expression of the prm (motions, thickness, density, stage load
+  /// factors, vertex transformation) besides pi: a scene states its design
+  /// values (a plunger's speed, a sag) once, with their units, and the
+  /// ones that must be positive are checked before anything is built.
+  class Constants
+  {
+  public:
+    static void declare_parameters(dealii::ParameterHandler &prm);
+    /// Parses the constants and makes them those of every expression
+    /// parsed afterwards. Throws std::invalid_argument naming the entry
+    /// and the constant: a malformed entry, an unknown name in "Positive",
+    /// a value that must be positive and is not.
+    static void parse_parameters(dealii::ParameterHandler &prm);
+  };
+
+  /// "name = number, name = number" -> the pairs in order. Throws
+  /// std::invalid_argument "<where>: '<entry>' is not of the form 'name =
+  /// number'" (a name is letters, digits and '_', not starting with a
+  /// digit).
+  std::vector<std::pair<std::string, double>>
+  parse_named_numbers(const std::string &text, const std::string &where);
+
+  /// The constants every expression sees (pi and those of the scene).
+  const std::map<std::string, double> &expression_constants();
+} // namespace coshell::io
