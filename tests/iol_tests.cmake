@@ -66,3 +66,49 @@ coshell_scene_test(iol.haptic_compression.corotational_small_load_limit
        --set "Analysis/Type=nonlinear static"
        --set "Loads/Load factor=0.01" --set "Nonlinear solver/Load steps=1"
        --value tip_ux -0.004641232 3e-3 --value tip_uy 0.003039388 3e-3)
+
+# Bad input of the injection scene: each gives a clear message, exits
+# non-zero and leaves no summary.json. Moved 8 mm back, the cartridge's
+# 4 mm tube would cross the flat lens (6 mm optic, 1.5 mm below the
+# tube's axis): the lens starts inside its wall; a nozzle of 0.8 mm (inner) is narrower than twice the
+# haptic's 0.45 mm (injector.geo refuses it); a plunger speed of 0 or
+# below is refused (Constants/Positive).
+set(injection ${COSHELL_PRM}/iol/injection.prm)
+set(injection_constants "plunger_start = -6.9, fold_time = 1.0, rod_out_time = 1.3, push_time = 5.68, axis_height = 1.5, wing_radius = 2.0")
+coshell_bad_input_test(iol_lens_inside_cartridge_wall
+  "the shell starts inside obstacle 'cartridge' .Contact/Obstacle 1."
+  ${injection} --set "Contact/Obstacle 1/Translation=-8$<SEMICOLON> 0$<SEMICOLON> axis_height")
+coshell_bad_input_test(iol_nozzle_narrower_than_two_haptics
+  "Contact/Obstacle 1 .'cartridge'.: gmsh could not mesh .*injector.geo': Error.*nozzle's inner diameter 2 . nozzle_radius = 0.8 mm is not wider than twice the haptic thickness"
+  ${injection} --set "Contact/Obstacle 1/Gmsh parameters=nozzle_radius = 0.4")
+coshell_bad_input_test(iol_plunger_standing_still
+  "Constants/Values: plunger_speed = 0 must be > 0"
+  ${injection} --set "Constants/Values=plunger_speed = 0, ${injection_constants}")
+coshell_bad_input_test(iol_plunger_backwards
+  "Constants/Values: plunger_speed = -2 must be > 0"
+  ${injection} --set "Constants/Values=plunger_speed = -2, ${injection_constants}")
+
+# The injection (prm/iol/injection.prm) on the coarse lens (203
+# triangles: optic_mesh_size 0.9, haptic_mesh_size 0.35 mm).
+# The fold stage alone, in the default suite: every gap >= 0 (lens against
+# the wings, the holding rod and itself), the closing wings roll the optic
+# from 6 mm across the injection axis to at most 3.7 mm (the closed wings'
+# 4 mm bore less the rim's 0.3 mm thickness; measured 3.54 mm), and the
+# work of the wings and the rod equals the lens's strain and kinetic
+# energy, the drag's dissipation and the barrier's energy within 2 %.
+# Draws the folded lens (the paper's Fig. 4) into
+# build/tests/output/iol.injection.fold/png/.
+set(coarse_lens "Mesh/Gmsh parameters=optic_mesh_size = 0.9, haptic_mesh_size = 0.35")
+coshell_iol_test(iol.injection.fold check_injection.py injection.prm
+                 --set ${coarse_lens}
+                 --set "Stage 2/Analysis type=none"
+                 --set "Stage 3/Analysis type=none"
+                 --fold-only 3.7
+                 --figures ${CMAKE_CURRENT_BINARY_DIR}/output/iol.injection.fold/png)
+# The whole injection is not a ctest yet: on the coarse lens it ran
+# through once (tests/scripts/check_injection.py passed every check but
+# the energy, whose bookkeeping changed after that run; doc/validation.md)
+# and stalled twice where the lens leaves the nozzle (t = 5.0 s: Newton's
+# residual stays at 0.2-1 while the step falls below 1e-6 s). Run it with
+#   check_injection.py --coshell build/coshell --prm prm/iol/injection.prm
+#     --output out --set "${coarse_lens}" --figures out/png

@@ -1,0 +1,332 @@
+#!/usr/bin/env python3
+"""Runs the IOL injection (prm/iol/injection.prm, or a reduced variant of it
+through --set) and checks what the scene must show:
+
+  - contact: the smallest gap of every pair (lens against the wings, the
+    holding rod, the cartridge, the plunger, the bag, and itself) stays
+    >= 0 at every step;
+  - folding: the optic's width across the injection axis (the distance in
+    the y-z plane of its rim points at y = +-3 mm) falls to the nozzle's
+    inner diameter or less while the optic's centre passes the nozzle;
+  - exit: the lens's trailing point (the trailing haptic's end) passes the
+    nozzle's tip;
+  - deployment: at the end, at rest in the bag (kinetic energy a small
+    fraction of its peak), the optic's largest deviation from its rest
+    shape after the best rigid fit is below 2 % of the optic diameter, and
+    every lens vertex lies inside the bag;
+  - the plunger force is finite and positive;
+  - energy: the work the plunger, the wings and the rod did on the lens,
+    plus the external work, equals the strain energy + kinetic energy +
+    the energy dissipated by drag and damping + the barrier energy stored
+    in contact within 2 % of that work (frictionless contact; with
+    friction the remainder is the friction's dissipation, reported, and
+    must not be negative beyond that tolerance).
+
+With --fold-only WIDTH the run is the fold stage alone: the gaps, the
+energy and the optic's width at the end (<= WIDTH) are checked and the
+folded lens is drawn.
+
+Writes plunger_force.csv (time, plunger_displacement, force_n) and, with
+--figures, the PNGs: the plunger force, strains and smallest gap against
+time, the folded lens (the paper's Fig. 4) and the deployment sequence.
+Reports the optic's decentration and tilt in the bag and the real-time
+factor.
+"""
+import argparse
+import json
+import math
+import os
+import subprocess
+import sys
+
+import numpy as np
+
+from scene_runner import (Checks, add_scene_arguments, energy_balance,
+                          exit_with, read_rows, run_scene)
+
+SCRIPTS = os.path.dirname(os.path.abspath(__file__))
+RENDER = os.path.join(SCRIPTS, "..", "..", "doc", "scripts", "render_vtu.py")
+sys.path.insert(0, os.path.dirname(RENDER))
+import render_vtu  # noqa: E402
+
+
+def parse_arguments():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    add_scene_arguments(parser)
+    parser.add_argument("--plunger", type=int, default=2,
+                        help="the plunger's obstacle number")
+    parser.add_argument("--nozzle-radius", type=float, default=1.75)
+    parser.add_argument("--nozzle-start", type=float, default=11.5,
+                        help="x where the nozzle begins (the taper's end), mm")
+    parser.add_argument("--nozzle-tip", type=float, default=15.0,
+                        help="x of the nozzle's tip in the lens frame, mm")
+    parser.add_argument("--bag-centre", type=float, nargs=3,
+                        default=(17.2, 0.0, 1.5))
+    parser.add_argument("--bag-radii", type=float, nargs=2,
+                        default=(5.0, 2.5), help="equator, polar (mm)")
+    parser.add_argument("--optic-diameter", type=float, default=6.0)
+    parser.add_argument("--shape-tolerance", type=float, default=0.02,
+                        help="largest optic deviation / optic diameter")
+    parser.add_argument("--energy-tolerance", type=float, default=0.02)
+    parser.add_argument("--friction", action="store_true",
+                        help="the scene has friction: the energy remainder "
+                             "is its dissipation")
+    parser.add_argument("--figures", help="directory for the PNG files")
+    parser.add_argument("--fold-only", type=float, metavar="WIDTH",
+                        help="the run is the fold stage alone: check the "
+                             "gaps, the energy and that the optic's width "
+                             "across the axis ends at most WIDTH (mm)")
+    return parser.parse_args()
+
+
+def column(rows, name):
+    return np.array([float(r[name]) for r in rows])
+
+
+def rim_chord(history):
+    """The optic's width across the injection axis: the distance in the
+    y-z plane between its rim points at y = +3 and y = -3 (6 mm flat)."""
+    plus = np.stack([3.0 + column(history, "rim_yp_uy"),
+                     column(history, "rim_yp_uz")])
+    minus = np.stack([-3.0 + column(history, "rim_ym_uy"),
+                      column(history, "rim_ym_uz")])
+    return np.linalg.norm(plus - minus, axis=0)
+
+
+def plunger_rows(forces, plunger):
+    rows = [r for r in forces if int(r["obstacle"]) == plunger]
+    time = column(rows, "time")
+    push = -column(rows, "fx")  # the lens pushes back on the plunger (-x)
+    return rows, time, column(rows, "ux"), push
+
+
+def write_plunger_csv(path, time, displacement, push):
+    with open(path, "w") as f:
+        f.write("time,plunger_displacement,force_n\n")
+        for t, u, p in zip(time, displacement, push):
+            f.write(f"{t:.9g},{u:.9g},{p:.9g}\n")
+
+
+def check_plunger_force(checks, forces, args, output):
+    _, time, displacement, push = plunger_rows(forces, args.plunger)
+    write_plunger_csv(os.path.join(output, "plunger_force.csv"), time,
+                      displacement, push)
+    largest = push.max() if len(push) else math.nan
+    print(f"plunger: largest force {1e3 * largest:.4g} mN, travel "
+          f"{displacement.max():.4g} mm")
+    checks("the plunger force is finite and positive",
+           bool(np.all(np.isfinite(push))) and largest > 0)
+    return time, displacement, push
+
+
+def check_fold_and_exit(checks, history, args):
+    chord = rim_chord(history)
+    centre_x = column(history, "optic_ux")
+    in_nozzle = (centre_x > args.nozzle_start) & (centre_x < args.nozzle_tip)
+    folded = chord[in_nozzle].max() if in_nozzle.any() else math.inf
+    print(f"optic width across the axis: {chord[0]:.4g} mm at rest, at most "
+          f"{folded:.4g} mm while its centre is in the nozzle (inner "
+          f"diameter {2 * args.nozzle_radius:.4g} mm)")
+    checks("the optic folds to the nozzle's diameter and its centre passes "
+           "the nozzle", in_nozzle.any() and folded <= 2 * args.nozzle_radius)
+    trailing = -6.3 + column(history, "trail_ux")
+    print(f"trailing haptic's end: x = {trailing.max():.4g} mm at most "
+          f"(nozzle tip {args.nozzle_tip} mm)")
+    checks("the whole lens leaves the nozzle's tip",
+           trailing.max() > args.nozzle_tip)
+    return chord
+
+
+def rigid_fit_deviation(reference, current):
+    """Largest distance between 'current' and the best rigid motion of
+    'reference' (Kabsch), and that motion's rotation."""
+    a = reference - reference.mean(axis=0)
+    b = current - current.mean(axis=0)
+    u, _, vt = np.linalg.svd(a.T @ b)
+    sign = np.sign(np.linalg.det(u @ vt))
+    rotation = u @ np.diag([1.0, 1.0, sign]) @ vt
+    return np.linalg.norm(a @ rotation - b, axis=1).max(), rotation
+
+
+def final_lens(output):
+    frames = render_vtu.read_pvd(os.path.join(output, "solution.pvd"))
+    mesh = render_vtu.read_vtu(frames[-1].shell_file)
+    optic = mesh.point_data["material_id"].astype(int).ravel() == 1
+    current = render_vtu.deformed_positions(mesh, 1.0)
+    return mesh.points, current, optic, frames
+
+
+def check_deployment(checks, history, args, output):
+    kinetic = column(history, "kinetic_energy")
+    print(f"kinetic energy: peak {kinetic.max():.3g}, end {kinetic[-1]:.3g} "
+          "N mm")
+    checks("the lens comes to rest in the bag (end kinetic energy below 1 % "
+           "of its peak)", kinetic[-1] <= 0.01 * kinetic.max())
+    reference, current, optic, frames = final_lens(output)
+    deviation, rotation = rigid_fit_deviation(reference[optic], current[optic])
+    whole, _ = rigid_fit_deviation(reference, current)
+    print(f"largest deviation from the rest shape after a rigid fit: optic "
+          f"{deviation:.4g} mm ({100 * deviation / args.optic_diameter:.3g} % "
+          f"of its diameter), whole lens {whole:.4g} mm (haptics held by "
+          "the bag)")
+    checks("the optic recovers its shape: deviation below "
+           f"{100 * args.shape_tolerance:g} % of its diameter",
+           deviation < args.shape_tolerance * args.optic_diameter)
+    centre = np.asarray(args.bag_centre)
+    equator, polar = args.bag_radii
+    scaled = (current - centre) / np.array([equator, equator, polar])
+    inside = np.linalg.norm(scaled, axis=1).max()
+    checks("every lens vertex lies inside the bag", inside < 1)
+    optic_centre = current[optic].mean(axis=0)
+    decentration = np.linalg.norm((optic_centre - centre)[:2])
+    normal = rotation.T @ np.array([0.0, 0.0, 1.0])
+    tilt = math.degrees(math.acos(min(1.0, abs(normal[2]))))
+    print(f"at rest in the bag: optic decentration {decentration:.4g} mm, "
+          f"tilt {tilt:.3g} degrees, axial position "
+          f"{optic_centre[2] - centre[2]:.4g} mm from the equator plane")
+    return frames
+
+
+def check_energy(checks, history, forces, args):
+    energies = energy_balance(history, forces)
+    works = energies["obstacle_work"]
+    plunger = works.get(args.plunger, 0.0)
+    remainder = energies["remainder"]
+    supplied = sum(works.values()) + energies["external_work"]
+    print("energy (N mm): plunger work {:.5g}, other obstacles (wings, rod) "
+          "{:.4g}, external {external_work:.3g}; strain {strain_energy:.5g}, "
+          "kinetic {kinetic_energy:.3g}, drag and damping "
+          "{dissipated_energy:.5g}, barrier {contact_energy:.3g}; remainder "
+          "{remainder:.3g} ({:.3g} % of the work supplied)".format(
+              plunger, sum(works.values()) - plunger,
+              100 * remainder / supplied, **energies))
+    tolerance = args.energy_tolerance * supplied
+    if args.friction:
+        print(f"friction dissipated {remainder:.4g} N mm "
+              f"({100 * remainder / supplied:.3g} % of the work supplied)")
+        checks("energy: the friction's share is not negative",
+               remainder >= -tolerance)
+    else:
+        checks(f"energy balance within {100 * args.energy_tolerance:g} % of "
+               "the work the plunger, wings and rod supplied",
+               abs(remainder) <= tolerance)
+
+
+def plot(args, history, time, displacement, push, chord):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    os.makedirs(args.figures, exist_ok=True)
+    t = column(history, "time")
+    figure, axes = plt.subplots(2, 2, figsize=(11, 7))
+    axes[0, 0].plot(time, 1e3 * push)
+    axes[0, 0].set(xlabel="time (s)", ylabel="plunger force (mN)")
+    axes[0, 1].plot(t, chord, label="optic width across the axis")
+    axes[0, 1].axhline(2 * args.nozzle_radius, ls="--", color="k",
+                       label="nozzle inner diameter")
+    axes[0, 1].set(xlabel="time (s)", ylabel="mm")
+    axes[0, 1].legend(fontsize=8)
+    for name in ("max_membrane_strain", "max_bending_strain"):
+        if name in history[0]:
+            axes[1, 0].plot(t, 100 * column(history, name),
+                            label=name.replace("_", " "))
+    axes[1, 0].set(xlabel="time (s)", ylabel="largest strain (%)")
+    axes[1, 0].legend(fontsize=8)
+    for name in ("strain_energy", "dissipated_energy", "contact_energy"):
+        axes[1, 1].plot(t, column(history, name), label=name.replace("_", " "))
+    axes[1, 1].set(xlabel="time (s)", ylabel="N mm")
+    axes[1, 1].legend(fontsize=8)
+    figure.suptitle(f"IOL injection: {os.path.basename(args.prm)}")
+    figure.tight_layout()
+    figure.savefig(os.path.join(args.figures, "injection_history.png"), dpi=110)
+    plt.close(figure)
+
+
+def render(arguments):
+    command = [sys.executable, RENDER] + arguments
+    print("rendering:", " ".join(command), flush=True)
+    return subprocess.run(command).returncode == 0
+
+
+def render_figures(checks, args, history, chord, frames):
+    """Fig. 4 (the folded lens, when the optic's centre is deepest in the
+    nozzle) and the sequence: fold, push, exit, deployment."""
+    t = column(history, "time")
+    centre_x = column(history, "optic_ux")
+    times = np.array([f.time for f in frames])
+    in_nozzle = (centre_x > args.nozzle_start) & (centre_x < args.nozzle_tip)
+    folded_time = t[in_nozzle][len(t[in_nozzle]) // 2] if in_nozzle.any() \
+        else t[np.argmax(centre_x)]
+    pvd = os.path.join(args.output, "solution.pvd")
+    picks = np.linspace(times[0], times[-1], 8)
+    nearest = sorted({float(times[np.argmin(abs(times - p))]) for p in picks})
+    folded = float(times[np.argmin(abs(times - folded_time))])
+    drawn = [
+        render(["--pvd", pvd, "--times", str(folded), "--out",
+                os.path.join(args.output, "folded"), "--view", "20", "-150",
+                "--fit", "shell", "--edges", "--title",
+                f"folded lens in the nozzle, t = {folded:.3g} s"]),
+        render(["--pvd", pvd, "--times"] + [str(x) for x in nearest] +
+               ["--out", os.path.join(args.output, "sequence"), "--montage",
+                os.path.join(args.figures, "injection_sequence.png"),
+                "--view", "35", "-100", "--fit", "shell"]),
+    ]
+    index = int(np.argmin(abs(times - folded)))
+    source = os.path.join(args.output, f"folded-{index:04d}.png")
+    if os.path.exists(source):
+        os.replace(source, os.path.join(args.figures, "folded_in_nozzle.png"))
+    checks("the folded lens and the sequence are drawn", all(drawn))
+
+
+def check_fold(checks, history, args):
+    """The fold stage alone: the optic rolled up in the closed wings."""
+    chord = rim_chord(history)
+    print(f"optic width across the axis: {chord[0]:.4g} mm at rest, "
+          f"{chord[-1]:.4g} mm folded")
+    checks(f"the wings fold the optic to {args.fold_only:g} mm or less",
+           chord[-1] <= args.fold_only)
+    if args.figures:
+        os.makedirs(args.figures, exist_ok=True)
+        last = render_vtu.read_pvd(
+            os.path.join(args.output, "solution.pvd"))[-1].shell_file
+        checks("the folded lens is drawn", render([
+            "--vtu", last,
+            "--out", os.path.join(args.figures, "folded_lens.png"),
+            "--view", "20", "-150", "--fit", "shell", "--edges", "--title",
+            f"folded lens, t = {column(history, 'time')[-1]:.3g} s"]))
+
+
+def main():
+    args = parse_arguments()
+    run_scene(args.coshell, args.prm, args.output, args.set)
+    checks = Checks()
+    forces = read_rows(os.path.join(args.output, "contact_forces.csv"))
+    history = read_rows(os.path.join(args.output, "time_history.csv"))
+    gaps = column(forces, "min_distance")
+    gaps = gaps[np.isfinite(gaps)]
+    print(f"smallest gap over every pair and step: {gaps.min():.4g} mm")
+    checks("every pair's gap stays >= 0 (lens against the wings, rod, "
+           "cartridge, plunger, bag and itself)", gaps.min() >= 0)
+    if args.fold_only is not None:
+        check_fold(checks, history, args)
+        check_energy(checks, history, forces, args)
+        exit_with(checks.failures)
+    time, displacement, push = check_plunger_force(checks, forces, args,
+                                                   args.output)
+    chord = check_fold_and_exit(checks, history, args)
+    frames = check_deployment(checks, history, args, args.output)
+    check_energy(checks, history, forces, args)
+    with open(os.path.join(args.output, "summary.json")) as f:
+        summary = json.load(f)
+    print(f"real-time factor {summary['real_time_factor']:.3g} "
+          f"({summary['simulated_time_s']:.3g} s simulated, "
+          f"{summary['steps']} steps, {summary['newton_iterations']} Newton "
+          "iterations)")
+    if args.figures:
+        plot(args, history, time, displacement, push, chord)
+        render_figures(checks, args, history, chord, frames)
+    exit_with(checks.failures)
+
+
+if __name__ == "__main__":
+    main()
