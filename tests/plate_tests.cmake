@@ -154,3 +154,16 @@ coshell_scene_test(linear_solver.cg-amg.default_null_space
   ARGS ${roof_level_3} --set "Linear solver/AMG near-null space=none"
        --value free_edge_deflection -0.29724386966 1e-7
        --min-iterations 300)
+
+# Mesh/Vertex transformation, checked by invariance: the clamped square
+# tilted by a rigid rotation about the x axis (cos 0.8, sin 0.6), its
+# normal reference turned with it, deflects along the turned normal by the
+# flat plate's 0.126532 q: the centre's uz is 0.8 times that, 0.1012256.
+coshell_scene_test(clamped_square_pressure.dkt.tilted_by_vertex_transformation
+  plates/clamped_square_pressure.prm
+  ARGS --set "Mesh/Refinement levels=4" --set ${no_vtu}
+       --set "Mesh/Vertex transformation=x$<SEMICOLON> 0.8 * y$<SEMICOLON> 0.6 * y"
+       --set "Mesh/Normal reference=0, -0.6, 0.8"
+       --set "Quantities of interest/Point values=center_deflection: 5 4 3 uz"
+       --set "Quantities of interest/Reference values=center_deflection: 0.1012256"
+       --value center_deflection 0.1012256 1e-3)
