@@ -13,6 +13,7 @@ packages=(
   libbenchmark-dev      # speed benchmarks (Google Benchmark)
   gmsh                  # meshes .geo files
   python3 python3-matplotlib  # test checkers and plots (/usr/bin/python3)
+  python3-h5py          # the checkpoint test reads the HDF5 files
   libopenblas0-pthread  # faster BLAS than the reference one for UMFPACK
 )
 if [ "${1:-}" = "--with-peers" ]; then

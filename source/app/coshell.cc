@@ -1,6 +1,7 @@
 // coshell: runs one scene (a .prm file) and writes VTU/PVD, summary.json
 // and, for refinement studies, convergence.csv.
 
+#include <coshell/driver/interruption.h>
 #include <coshell/driver/scene.h>
 #include <coshell/solvers/parallel_environment.h>
 
@@ -13,7 +14,7 @@ namespace
 {
   const char *usage =
       "usage: coshell FILE.prm [--set \"Section/Name=value\" ...] "
-      "[--output DIR] [--interactive]\n"
+      "[--output DIR] [--interactive] [--restart FILE]\n"
       "       coshell --print-parameters [FILE.prm]\n"
       "       coshell --help\n"
       "\n"
@@ -31,16 +32,21 @@ namespace
       "                        standard input, one per line; one line per "
       "step\n"
       "                        on standard output (see the README)\n"
+      "  --restart FILE        resume from a checkpoint (HDF5) written by\n"
+      "                        Output/Checkpoint interval or on SIGINT/"
+      "SIGTERM\n"
       "  --help                this text\n"
       "\n"
       "Exit status: 0 on success, 1 on bad input or a failed solve, 2 on a "
-      "bad command line.\n";
+      "bad command line,\n3 when stopped by SIGINT or SIGTERM (a dynamic "
+      "stage writes a checkpoint first).\n";
 
   struct CommandLine
   {
     std::string              prm_file;
     std::vector<std::string> overrides;
     std::string              output_directory;
+    std::string              restart_file;
     bool                     help             = false;
     bool                     print_parameters = false;
     bool                     interactive      = false;
@@ -63,6 +69,8 @@ namespace
         line.overrides.push_back(argv[++i]);
       else if (arg == "--output" && has_value)
         line.output_directory = argv[++i];
+      else if (arg == "--restart" && has_value)
+        line.restart_file = argv[++i];
       else if (arg.rfind("-", 0) != 0 && line.prm_file.empty())
         line.prm_file = arg;
       else
@@ -112,10 +120,21 @@ int main(int argc, char **argv)
     // Interactive runs keep standard output for the protocol; the log
     // goes to standard error.
     std::ostream &log = line.interactive ? std::cerr : std::cout;
+    if (line.interactive && !line.restart_file.empty())
+      throw std::invalid_argument("--restart and --interactive do not go "
+                                  "together");
     if (line.interactive)
       scene.drive_interactively(std::cin, std::cout);
+    if (!line.restart_file.empty())
+      scene.restart_from(line.restart_file);
+    coshell::driver::install_interrupt_handlers();
     scene.run(output, log);
     log << "results written to " << output << "\n";
+  }
+  catch (const coshell::driver::Interrupted &stop)
+  {
+    std::cerr << "coshell: " << stop.what() << "\n";
+    return 3;
   }
   catch (const std::exception &error)
   {

@@ -1,4 +1,6 @@
 #include <coshell/driver/scene.h>
+
+#include "staged_output.h"
 #include <coshell/io/csv_file.h>
 #include <coshell/io/expressions.h>
 #include <coshell/io/results.h>
@@ -145,6 +147,16 @@ namespace coshell::driver
         "give each stage its own type instead.");
     prm.leave_subsection();
     io::VtuOutput::declare_parameters(prm);
+    prm.enter_subsection("Output");
+    prm.declare_entry(
+        "Checkpoint interval", "0", Patterns::Double(0),
+        "Dynamic stages: write checkpoint-NNNNNN.h5 (HDF5; NNNNNN the "
+        "step) to the output directory whenever the time passes a "
+        "multiple of this, in s of simulated time (0: never). "
+        "`coshell scene.prm --restart FILE` resumes from one. SIGINT and "
+        "SIGTERM write one at the end of the current step and stop with "
+        "status 3. Not with Contact (its state is not stored yet).");
+    prm.leave_subsection();
     solvers::ThreadSettings::declare_parameters(prm);
   }
 
@@ -185,6 +197,14 @@ namespace coshell::driver
       analysis_type_ = "nonlinear static";
     check_analysis_choice();
     output_.parse_parameters(prm);
+    prm.enter_subsection("Output");
+    checkpoint_interval_ = prm.get_double("Checkpoint interval");
+    prm.leave_subsection();
+    if (checkpoint_interval_ > 0 && contact_.enabled())
+      throw std::invalid_argument(
+          "Output/Checkpoint interval: checkpoints do not carry the contact "
+          "state yet (barrier stiffness, lagging obstacles, friction); set "
+          "it to 0 or Contact/Method = none");
     solvers::ThreadSettings().parse_parameters(prm);
   }
 
@@ -453,35 +473,6 @@ namespace coshell::driver
   }
 
   /// The files a staged run writes as it goes.
-  struct Scene::StagedOutput
-  {
-    StagedOutput(io::CsvFile &&curve, io::CsvFile &&history)
-        : curve(std::move(curve)), history(std::move(history))
-    {
-    }
-
-    io::CsvFile                curve, history;
-    std::optional<io::CsvFile> time_history, contact_forces;
-    /// The contact of the run (nullptr when Contact is off), and the
-    /// extremes of its gap over every iterate of the run.
-    contact::Contact *contact      = nullptr;
-    double            smallest_gap = std::numeric_limits<double>::infinity();
-    double            largest_penetration = 0;
-    unsigned int      step = 0, last_written = 0;
-    /// Energy bookkeeping of the dynamic stages: work of the loads and
-    /// reactions, energy dissipated by damping and drag (trapezoidal in
-    /// time), and the working and damping forces of the last step. Both
-    /// works use the trapezoidal rule on the step increment, the rule the
-    /// time integrator itself conserves energy with at rho_inf = 1.
-    double         external_work = 0, dissipated_energy = 0;
-    Vector<double> generalized_force, damping_force;
-    /// The work of every contact force on the shell (obstacles, friction,
-    /// self contact), trapezoidal like the others, and the contact force
-    /// of the last step.
-    double         contact_work = 0;
-    Vector<double> contact_force;
-  };
-
   namespace
   {
     /// External loads plus the reactions at constrained DoFs: the forces
@@ -603,15 +594,25 @@ namespace coshell::driver
     const auto    *internal = problem.find<model::InternalForce>();
     const auto    *inertia  = problem.find<model::Inertia>();
     Vector<double> g, q(model.n_dofs());
+    // A restart resumes at the checkpoint's time with its carry-over.
+    const bool   resuming = restart_ && restart_->stage == stage.number;
+    const double from     = resuming ? restart_->time : start_time;
+    if (!resuming)
+      carry_ = {};
     // The forces at the start of the stage, for the work of the first step.
     Vector<double> residual(model.n_dofs());
-    problem.set_time(start_time);
+    problem.set_time(from);
     problem.evaluate(residual, nullptr);
     working_forces(problem, out.generalized_force);
     out.damping_force.reinit(model.n_dofs());
     inertia->measures(state, &out.damping_force);
     if (out.contact)
       out.contact_force = problem.force(model::ForceKind::contact);
+    if (resuming)
+    {
+      out.generalized_force = restart_->generalized_force;
+      out.damping_force     = restart_->damping_force;
+    }
     Vector<double> damping_force(model.n_dofs());
 
     const auto wall    = std::chrono::steady_clock::now();
@@ -619,7 +620,8 @@ namespace coshell::driver
     {
       const unsigned int step = ++out.step;
       working_forces(problem, g);
-      problem.state().step_increment(q); // relative to the previous save
+      // Displacement since the previous save (global axes, also with SE3).
+      problem.state().step_displacement(q);
       out.external_work += 0.5 * ((g * q) + (out.generalized_force * q));
       out.generalized_force = g;
       const model::KineticMeasures kinetic =
@@ -654,6 +656,7 @@ namespace coshell::driver
       record_contact(out, step, record.time);
       if (output_.wants_step(step))
         write_step(model, state, out, directory, step, record.time);
+      checkpoint_step(problem, out, stage, record.time, directory, log);
       // Interactive runs count only the time spent computing, not the
       // time spent waiting for the next target.
       if (replies_)
@@ -672,9 +675,11 @@ namespace coshell::driver
     const double solver_before   = linear_solver_.seconds();
     const double assembly_before = problem.assembly_seconds();
     const double reached =
-        advance_dynamic_stage(problem, start_time, start_time + stage.duration,
+        advance_dynamic_stage(problem, from, start_time + stage.duration,
                               out.step, on_step, on_iteration, log);
-    result.simulated_time_s += reached - start_time;
+    result.simulated_time_s += reached - from;
+    if (resuming)
+      restart_.reset();
     result.dynamic_wall_time_s += seconds_since(wall);
     result.dynamic_assembly_s += problem.assembly_seconds() - assembly_before;
     result.dynamic_linear_solver_s += linear_solver_.seconds() - solver_before;
@@ -730,7 +735,8 @@ namespace coshell::driver
     {
       advance_started_ = std::chrono::steady_clock::now();
       time_integration_.run(problem, linear_solver_, path_following_.newton(),
-                            from, to, step, on_step, on_iteration, log);
+                            from, to, step, on_step, on_iteration, log,
+                            &carry_);
       computing_s_ += seconds_since(advance_started_);
     };
     if (!commands_)
@@ -788,6 +794,7 @@ namespace coshell::driver
     const auto &model   = problem.model();
     const auto  on_step = [&](unsigned int, double, unsigned int iterations)
     {
+      stop_if_interrupted_in_static_stage();
       const unsigned int step = ++out.step;
       result.qoi = quantities_.evaluate(model, problem.state().values());
       std::vector<double> row = {double(step), problem.load_factor(),
@@ -828,14 +835,19 @@ namespace coshell::driver
     const bool      finite =
         element_.formulation == model::Formulation::corotational;
     model::ShellState state(model, finite);
-    StagedOutput      out(
-             io::CsvFile(directory + "/load_displacement.csv",
-                         with_quantities({"step", "load_factor", "iterations"},
-                                         quantities_.evaluate(model, state.values()),
-                                         {"stage", "time"})),
-             io::CsvFile(directory + "/newton_history.csv",
-                         {"step", "iteration", "load_factor", "relative_residual",
-                          "correction_norm", "relative_energy"}));
+    if (has_dynamic_stage())
+      state.set_body_frame_translations(time_integration_.se3());
+    // Read before the files below overwrite them (same directory).
+    const std::vector<std::string> earlier = read_earlier_outputs();
+    next_checkpoint_time_                  = checkpoint_interval_;
+    StagedOutput out(
+        io::CsvFile(directory + "/load_displacement.csv",
+                    with_quantities({"step", "load_factor", "iterations"},
+                                    quantities_.evaluate(model, state.values()),
+                                    {"stage", "time"})),
+        io::CsvFile(directory + "/newton_history.csv",
+                    {"step", "iteration", "load_factor", "relative_residual",
+                     "correction_norm", "relative_energy"}));
     if (has_dynamic_stage())
     {
       out.time_history.emplace(
@@ -847,7 +859,8 @@ namespace coshell::driver
                "linear_momentum_z", "angular_momentum_x", "angular_momentum_y",
                "angular_momentum_z", "contact_work", "contact_energy"},
               step_quantities(model, state, nullptr), {"stage"}));
-      model::Inertia(model, inertia_).set_initial_velocity(state);
+      model::Inertia(model, inertia_, time_integration_.se3())
+          .set_initial_velocity(state);
       state.save();
     }
     std::unique_ptr<contact::Contact> contact;
@@ -862,9 +875,16 @@ namespace coshell::driver
                                    "mx", "my", "mz", "active_pairs",
                                    "min_distance", "work", "ux", "uy", "uz"});
     }
+    if (restart_)
+      restore_checkpoint(state, out, earlier, directory, log);
     double start_time = 0;
     for (const Stage &stage : stages_.list())
     {
+      if (skipped_by_restart(stage.number))
+      {
+        start_time += stage.duration;
+        continue;
+      }
       auto phase = std::chrono::steady_clock::now();
       if (stages_.staged())
         log << stage.name() << ", t = " << start_time << " .. "
@@ -872,8 +892,8 @@ namespace coshell::driver
       auto contributions = static_contributions(
           model, loads_, element_.formulation, path_following_.tangent(), log);
       if (stage.analysis == "dynamic")
-        contributions.push_back(
-            std::make_unique<model::Inertia>(model, inertia_));
+        contributions.push_back(std::make_unique<model::Inertia>(
+            model, inertia_, time_integration_.se3()));
       if (contact)
         contributions.push_back(
             std::make_unique<contact::ContactContribution>(*contact));
@@ -882,6 +902,8 @@ namespace coshell::driver
                                   motions_.increments(model, stage.motions));
       problem.set_schedule({start_time, stage.duration, stage.load_factor});
       linear_solver_.check_applicable(non_symmetric_reason(problem));
+      if (restart_ && restart_->stage == stage.number)
+        problem.set_converged_force_scale(restart_->converged_force_scale);
       result.wall_time_s.setup += seconds_since(phase);
       phase = std::chrono::steady_clock::now();
       if (stage.analysis == "dynamic")

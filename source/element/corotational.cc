@@ -758,4 +758,41 @@ namespace coshell::element
     const Vec3<double> theta = log_map(to_mat3(rotation));
     return Tensor<1, 3>({theta[0], theta[1], theta[2]});
   }
+
+  namespace
+  {
+    /// I + b skew(theta) + c skew(theta)^2.
+    Tensor<2, 3>
+    polynomial_in_skew(const Tensor<1, 3> &theta, double b, double c)
+    {
+      const Tensor<2, 3> w      = skew(theta);
+      Tensor<2, 3>       result = b * w + c * (w * w);
+      for (unsigned int d = 0; d < 3; ++d)
+        result[d][d] += 1;
+      return result;
+    }
+  } // namespace
+
+  Tensor<2, 3> so3_left_jacobian(const Tensor<1, 3> &theta)
+  {
+    const double t = theta.norm(), t2 = t * t;
+    const double half_sine = std::sin(0.5 * t);
+    // 1 - cos t as 2 sin^2(t/2) keeps its digits; t - sin t loses about
+    // 6e-16 / t^2 of its own, so below 0.02 rad its series is used.
+    const double b = t < 1e-8 ? 0.5 : 2 * half_sine * half_sine / t2;
+    const double c = t < 0.02 ? 1.0 / 6 - t2 / 120 + t2 * t2 / 5040
+                              : (t - std::sin(t)) / (t2 * t);
+    return polynomial_in_skew(theta, b, c);
+  }
+
+  Tensor<2, 3> so3_left_jacobian_inverse(const Tensor<1, 3> &theta)
+  {
+    const double t = theta.norm(), t2 = t * t;
+    // (1 - (t/2) cot(t/2)) / t^2: its closed form cancels to 1e-16 / t^2
+    // relative, so below 0.02 rad the series is used. (The form with
+    // 1 - cos t cost the SE(3) integrator a residual floor of 3e-8.)
+    const double c = t < 0.02 ? 1.0 / 12 + t2 / 720 + t2 * t2 / 30240
+                              : (1 - 0.5 * t / std::tan(0.5 * t)) / t2;
+    return polynomial_in_skew(theta, -0.5, c);
+  }
 } // namespace coshell::element

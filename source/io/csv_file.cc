@@ -1,5 +1,6 @@
 #include <coshell/io/csv_file.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <iomanip>
 #include <stdexcept>
@@ -24,7 +25,41 @@ namespace coshell::io
     out_.open(path + ".partial");
     if (!out_)
       throw std::runtime_error("cannot write '" + path + ".partial'");
-    out_ << join(columns) << '\n' << std::setprecision(12);
+    header_ = join(columns);
+    out_ << header_ << '\n' << std::setprecision(12);
+  }
+
+  unsigned int CsvFile::rows() const
+  {
+    return rows_;
+  }
+
+  bool CsvFile::resume(const std::string &earlier)
+  {
+    const auto header_end = earlier.find('\n');
+    if (header_end == std::string::npos ||
+        earlier.substr(0, header_end) != header_)
+      return false;
+    const std::string rows = earlier.substr(header_end + 1);
+    out_ << rows;
+    out_.flush();
+    rows_ += std::count(rows.begin(), rows.end(), '\n');
+    return true;
+  }
+
+  std::string read_earlier_rows(const std::string &path, unsigned int rows)
+  {
+    std::ifstream in(path);
+    if (!in)
+      in.open(path + ".partial");
+    std::string text, line;
+    for (unsigned int n = 0; n <= rows; ++n)
+    {
+      if (!std::getline(in, line))
+        return "";
+      text += line + '\n';
+    }
+    return text;
   }
 
   void CsvFile::row(const std::vector<double> &values)
@@ -32,6 +67,7 @@ namespace coshell::io
     for (std::size_t i = 0; i < values.size(); ++i)
       out_ << (i ? "," : "") << values[i];
     out_ << std::endl;
+    ++rows_;
   }
 
   void CsvFile::finish()

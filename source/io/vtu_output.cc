@@ -150,4 +150,43 @@ namespace coshell::io
     out << "</Collection>\n</VTKFile>\n";
     return pvd;
   }
+
+  unsigned int VtuOutput::series_size(const std::string &directory) const
+  {
+    const auto found = series_.find(directory);
+    return found == series_.end() ? 0 : found->second.size();
+  }
+
+  namespace
+  {
+    /// The value of 'key="..."' in a line of our .pvd files, or "".
+    std::string xml_attribute(const std::string &line, const std::string &key)
+    {
+      const std::string marker = key + "=\"";
+      const auto        start  = line.find(marker);
+      if (start == std::string::npos)
+        return "";
+      const auto end = line.find('"', start + marker.size());
+      return line.substr(start + marker.size(), end - start - marker.size());
+    }
+  } // namespace
+
+  bool VtuOutput::resume_series(const std::string &directory,
+                                const std::string &earlier_pvd,
+                                unsigned int       entries)
+  {
+    std::vector<Entry> series;
+    std::ifstream      in(earlier_pvd);
+    std::string        line;
+    while (series.size() < entries && std::getline(in, line))
+      if (line.rfind("<DataSet ", 0) == 0)
+        series.push_back(
+            {std::stod(xml_attribute(line, "timestep")),
+             static_cast<unsigned int>(std::stoul(xml_attribute(line, "part"))),
+             xml_attribute(line, "file")});
+    if (series.size() < entries)
+      return false;
+    series_[directory] = series;
+    return true;
+  }
 } // namespace coshell::io

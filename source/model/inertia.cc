@@ -23,6 +23,18 @@ namespace coshell::model
                                       where);
     }
 
+    /// The three entries of a cell vertex's DoFs from 'first' on.
+    Tensor<1, 3> vertex_slot(const Vector<double> &values,
+                             const CellIterator   &cell,
+                             unsigned int          v,
+                             unsigned int          first)
+    {
+      Tensor<1, 3> x;
+      for (unsigned int d = 0; d < 3; ++d)
+        x[d] = values[cell->vertex_dof_index(v, first + d)];
+      return x;
+    }
+
     void require_non_negative(double value, const std::string &name)
     {
       if (!(value >= 0))
@@ -105,8 +117,11 @@ namespace coshell::model
            tangential_drag > 0;
   }
 
-  Inertia::Inertia(const ShellModel &model, const InertiaParameters &parameters)
-      : model_(model), parameters_(parameters)
+  Inertia::Inertia(const ShellModel        &model,
+                   const InertiaParameters &parameters,
+                   bool                     body_frame_translations)
+      : model_(model), parameters_(parameters),
+        body_frame_translations_(body_frame_translations)
   {
   }
 
@@ -135,22 +150,29 @@ namespace coshell::model
 
   bool Inertia::symmetric_tangent() const
   {
-    return true;
+    return !body_frame_translations_;
   }
 
-  std::array<double, element::shell_dofs>
-  Inertia::spatial_rates(const CellIterator   &cell,
-                         const ShellState     &state,
-                         const Vector<double> &rates) const
+  std::array<double, element::shell_dofs> Inertia::spatial_rates(
+      const CellIterator &cell, const ShellState &state, Rate rate) const
   {
+    const Vector<double> &rates =
+        rate == Rate::velocity ? state.velocity() : state.acceleration();
+    const auto slot =
+        [&](const Vector<double> &values, unsigned int v, unsigned int first)
+    { return vertex_slot(values, cell, v, first); };
     std::array<double, element::shell_dofs> spatial;
     for (unsigned int v = 0; v < 3; ++v)
     {
-      Tensor<1, 3> translation, rotation;
-      for (unsigned int d = 0; d < 3; ++d)
+      Tensor<1, 3> translation = slot(rates, v, ux);
+      Tensor<1, 3> rotation    = slot(rates, v, rx);
+      if (state.body_frame_translations())
       {
-        translation[d] = rates[cell->vertex_dof_index(v, ux + d)];
-        rotation[d]    = rates[cell->vertex_dof_index(v, rx + d)];
+        // dx/dt = R v; d2x/dt2 = R (dv/dt + Omega x v).
+        if (rate == Rate::acceleration)
+          translation += cross_product_3d(slot(state.velocity(), v, rx),
+                                          slot(state.velocity(), v, ux));
+        translation = state.rotation(cell->vertex_index(v)) * translation;
       }
       if (state.finite_rotations())
         rotation = state.rotation(cell->vertex_index(v)) * rotation;
@@ -161,6 +183,61 @@ namespace coshell::model
       }
     }
     return spatial;
+  }
+
+  FullMatrix<double>
+  Inertia::times_rate_jacobian(const FullMatrix<double> &matrix,
+                               const CellIterator       &cell,
+                               const ShellState         &state,
+                               Rate                      rate,
+                               double                    coefficient,
+                               double                    gyroscopic) const
+  {
+    FullMatrix<double> result(matrix.m(), matrix.n());
+    result.add(coefficient, matrix);
+    if (!state.body_frame_translations())
+      return result;
+    const auto slot =
+        [&](const Vector<double> &values, unsigned int v, unsigned int first)
+    { return vertex_slot(values, cell, v, first); };
+    for (unsigned int v = 0; v < 3; ++v)
+    {
+      const unsigned int  vertex = cell->vertex_index(v);
+      const Tensor<2, 3> &R      = state.rotation(vertex);
+      const Tensor<1, 3>  omega  = slot(state.velocity(), v, rx);
+      const Tensor<1, 3>  body_v = slot(state.velocity(), v, ux);
+      // The body rate w whose spatial form R w is differentiated.
+      Tensor<1, 3> w = body_v;
+      if (rate == Rate::acceleration)
+        w = slot(state.acceleration(), v, ux) + cross_product_3d(omega, body_v);
+      Tensor<2, 3> dw_dq = gyroscopic * element::skew(omega);
+      for (unsigned int d = 0; d < 3; ++d)
+        dw_dq[d][d] += coefficient;
+      // Translation columns: through q_u = V(psi)^-1 R_n^T (x - x_n).
+      const Tensor<2, 3> translation =
+          R * dw_dq * state.step_translation_jacobian(vertex);
+      // Rotation columns (spatial spin d_theta, material d_phi = R^T
+      // d_theta): R itself turns, Omega moves with c_v d_phi, and q_u with
+      // (1/2) skew(d) d_phi, d = R_n^T (x - x_n) (leading term of V^-1).
+      const Tensor<2, 3> rotation =
+          R *
+          (-element::skew(w) - gyroscopic * element::skew(body_v) +
+           0.5 * dw_dq * element::skew(state.body_step_translation(vertex))) *
+          transpose(R);
+      for (unsigned int i = 0; i < matrix.m(); ++i)
+        for (unsigned int e = 0; e < 3; ++e)
+        {
+          double along_translation = 0, along_rotation = 0;
+          for (unsigned int d = 0; d < 3; ++d)
+          {
+            along_translation += matrix(i, 6 * v + d) * translation[d][e];
+            along_rotation += matrix(i, 6 * v + d) * rotation[d][e];
+          }
+          result(i, 6 * v + e) = along_translation;
+          result(i, 6 * v + 3 + e) += along_rotation;
+        }
+    }
+    return result;
   }
 
   FullMatrix<double> Inertia::damping(const CellIterator             &cell,
@@ -195,22 +272,58 @@ namespace coshell::model
     const ShellState        &state = point.state;
     const FullMatrix<double> mass =
         element::shell_mass(model_.triangle(cell), mass_properties(cell));
-    const auto acceleration = spatial_rates(cell, state, state.acceleration());
+    const auto acceleration = spatial_rates(cell, state, Rate::acceleration);
     for (unsigned int i = 0; i < element::shell_dofs; ++i)
       for (unsigned int j = 0; j < element::shell_dofs; ++j)
         contribution.vector[i] -= mass(i, j) * acceleration[j];
     if (with_tangent)
-      contribution.matrix.add(point.acceleration_coefficient, mass);
+      add_inertia_tangent(cell, point, mass, contribution.matrix);
     if (!parameters_.damped())
       return;
     const FullMatrix<double> c =
         damping(cell, current_triangle(model_, cell, state), mass);
-    const auto velocity = spatial_rates(cell, state, state.velocity());
+    const auto velocity = spatial_rates(cell, state, Rate::velocity);
     for (unsigned int i = 0; i < element::shell_dofs; ++i)
       for (unsigned int j = 0; j < element::shell_dofs; ++j)
         contribution.vector[i] -= c(i, j) * velocity[j];
-    if (with_tangent)
-      contribution.matrix.add(point.velocity_coefficient, c);
+    if (with_tangent && !point.rate_mass)
+      contribution.matrix.add(
+          1.0, times_rate_jacobian(c, cell, state, Rate::velocity,
+                                   point.velocity_coefficient, 0));
+  }
+
+  void Inertia::add_inertia_tangent(const CellIterator       &cell,
+                                    const EvaluationPoint    &point,
+                                    const FullMatrix<double> &mass,
+                                    FullMatrix<double>       &matrix) const
+  {
+    const ShellState &state = point.state;
+    if (!state.body_frame_translations())
+    {
+      matrix.add(point.acceleration_coefficient, mass);
+      return;
+    }
+    if (!point.rate_mass)
+    {
+      // d/dx of M R (dv/dt + Omega x v) through the step increment.
+      matrix.add(1.0, times_rate_jacobian(mass, cell, state, Rate::acceleration,
+                                          point.acceleration_coefficient,
+                                          point.velocity_coefficient));
+      return;
+    }
+    // d(force)/d(body acceleration): M R on the translations.
+    for (unsigned int v = 0; v < 3; ++v)
+    {
+      const Tensor<2, 3> &R = state.rotation(cell->vertex_index(v));
+      for (unsigned int i = 0; i < element::shell_dofs; ++i)
+      {
+        for (unsigned int e = 0; e < 3; ++e)
+          for (unsigned int d = 0; d < 3; ++d)
+            matrix(i, 6 * v + e) += mass(i, 6 * v + d) * R[d][e];
+        for (unsigned int d = 3; d < 6; ++d)
+          matrix(i, 6 * v + d) += mass(i, 6 * v + d);
+      }
+    }
   }
 
   KineticMeasures Inertia::measures(const ShellState &state,
@@ -223,7 +336,7 @@ namespace coshell::model
     {
       const FullMatrix<double> mass =
           element::shell_mass(model_.triangle(cell), mass_properties(cell));
-      const auto velocity = spatial_rates(cell, state, state.velocity());
+      const auto velocity = spatial_rates(cell, state, Rate::velocity);
       const auto current  = current_triangle(model_, cell, state);
       std::array<double, element::shell_dofs> momentum{};
       for (unsigned int i = 0; i < element::shell_dofs; ++i)
@@ -267,8 +380,12 @@ namespace coshell::model
         const VertexDofs  &dofs = model_.vertex_dofs(v);
         const Tensor<2, 3> R    = state.rotation(v);
         velocity->vector_value(vertices[v], value);
+        // Body-frame translational velocity v = R^T dx/dt with SE(3).
+        Tensor<1, 3> dx_dt({value[0], value[1], value[2]});
+        if (state.body_frame_translations())
+          dx_dt = transpose(R) * dx_dt;
         for (unsigned int d = 0; d < 3; ++d)
-          state.velocity()[dofs[ux + d]] = value[d];
+          state.velocity()[dofs[ux + d]] = dx_dt[d];
         spin->vector_value(vertices[v], value);
         // Material angular velocity Omega = R^T omega.
         const Tensor<1, 3> omega({value[0], value[1], value[2]});

@@ -369,6 +369,17 @@ namespace coshell::model
     state_.set_step_increment(increment);
   }
 
+  void ShellProblem::step_displacement(const Vector<double> &increment,
+                                       Vector<double>       &displacement) const
+  {
+    state_.step_displacement(increment, displacement);
+  }
+
+  void ShellProblem::set_step_displacement(const Vector<double> &displacement)
+  {
+    state_.set_step_displacement(displacement);
+  }
+
   Vector<double> &ShellProblem::velocity()
   {
     return state_.velocity();
@@ -392,12 +403,23 @@ namespace coshell::model
     EvaluationPoint at          = point();
     at.acceleration_coefficient = 1;
     at.velocity_coefficient     = 0;
+    at.rate_mass                = true;
     for (auto &force : forces_)
       force = 0;
     Vector<double> unused(model_.n_dofs());
     assemble([](const Contribution &c)
              { return c.kind() == ForceKind::inertia; },
              at, &unused, &mass);
+  }
+
+  double ShellProblem::converged_force_scale() const
+  {
+    return std::max(converged_force_scale_, current_force_scale());
+  }
+
+  void ShellProblem::set_converged_force_scale(double scale)
+  {
+    converged_force_scale_ = scale;
   }
 
   const ShellState &ShellProblem::state() const

@@ -186,6 +186,16 @@ namespace coshell::solvers
         "radius); implicit euler: backward Euler with full Newton (first "
         "order, strongly damped); linearized implicit euler: one linear "
         "solve per step (Baraff & Witkin 1998; SOFA and the seed paper).");
+    prm.declare_entry(
+        "Lie group", "R3xSO3", Patterns::Selection("R3xSO3|SE3"),
+        "The group each vertex's configuration (x, R) is integrated on "
+        "(dimensionless choice). R3xSO3: translations in global axes, "
+        "rotations on SO(3). SE3: translation and rotation together, with "
+        "velocities in the node's frame (Sonneville, Cardona & Bruls "
+        "2014), so a motion of constant twist, such as a rigid spin, is "
+        "integrated exactly at any step size, where R3xSO3 lags by the "
+        "trapezoidal phase error (7 % at 30 degrees per step). SE3 needs "
+        "Element/Formulation = corotational; its tangent is not symmetric.");
     prm.declare_entry("Time step", "1e-3", Patterns::Double(),
                       "Initial time step, s; > 0.");
     prm.declare_entry("Minimum time step", "1e-9", Patterns::Double(),
@@ -219,6 +229,7 @@ namespace coshell::solvers
   {
     prm.enter_subsection("Time integration");
     method_            = prm.get("Method");
+    se3_               = prm.get("Lie group") == "SE3";
     time_step_         = prm.get_double("Time step");
     min_time_step_     = prm.get_double("Minimum time step");
     max_time_step_     = prm.get_double("Maximum time step");
@@ -247,6 +258,11 @@ namespace coshell::solvers
   const std::string &TimeIntegration::method() const
   {
     return method_;
+  }
+
+  bool TimeIntegration::se3() const
+  {
+    return se3_;
   }
 
   double TimeIntegration::end_time() const
@@ -280,23 +296,28 @@ namespace coshell::solvers
                                     unsigned int             first_step,
                                     const StepObserver      &on_step,
                                     const IterationObserver &on_iteration,
-                                    std::ostream            &log) const
+                                    std::ostream            &log,
+                                    Carry                   *carry) const
   {
+    const bool     resume = carry && carry->filled();
     Scheme         scheme(method_, spectral_radius_);
     StepProblem    step_problem(problem, scheme);
     const Newton   newton(newton_parameters, linear_solver);
-    StepController control({std::min(time_step_, max_time_step_),
-                            min_time_step_, max_time_step_, max_step_cuts_,
-                            easy_iterations_, growth_factor_, 0.5});
+    StepController control(
+        {resume ? carry->step_size : std::min(time_step_, max_time_step_),
+         min_time_step_, max_time_step_, max_step_cuts_, easy_iterations_,
+         growth_factor_, 0.5});
     problem.set_time(start);
-    if (!scheme.euler)
+    if (resume)
+      scheme.a_n = carry->pseudo_acceleration;
+    else if (!scheme.euler)
       initial_acceleration(problem, linear_solver);
     problem.save();
     const auto     wall_start    = std::chrono::steady_clock::now();
     auto           last_progress = wall_start;
     double         t             = start;
     unsigned int   step          = first_step;
-    Vector<double> q(problem.sparsity().n_rows());
+    Vector<double> q(problem.sparsity().n_rows()), displacement;
     while (t < end - 1e-12 * std::max(1.0, std::abs(end)))
     {
       double h = std::min(control.size(), end - t);
@@ -308,11 +329,17 @@ namespace coshell::solvers
                                     scheme.velocity_coefficient());
       scheme.predictor(q);
       // The predictor is a step like any other: the collision filter
-      // scales it (it reads translations only, which both layouts share).
-      const double admissible = problem.admissible_fraction(q);
+      // scales it. It certifies the straight path to the predicted
+      // position, so a scaled SE(3) step is set as a straight one.
+      problem.step_displacement(q, displacement);
+      const double admissible = problem.admissible_fraction(displacement);
       if (admissible < 1)
-        q *= admissible;
-      problem.set_step_increment(q);
+      {
+        displacement *= admissible;
+        problem.set_step_displacement(displacement);
+      }
+      else
+        problem.set_step_increment(q);
       step_problem.update_rates();
       const auto observe = [&](const NewtonIteration &record)
       {
@@ -329,6 +356,8 @@ namespace coshell::solvers
         t += h;
         ++step;
         control.success(iterations);
+        if (carry)
+          *carry = {scheme.a_n, control.size()};
         // Before save(): the observer measures the step increment (work).
         on_step({step, t, h, iterations});
         problem.save();

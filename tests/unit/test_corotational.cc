@@ -665,3 +665,37 @@ TEST(CorotationalShell, SymmetricTangentIsTheSymmetricPartOfTheConsistent)
     }
   EXPECT_GT(skew, 1e-8 * largest); // a deformed state: there was a skew part
 }
+
+// The SE(3) exponential's translation part V(theta) = int_0^1 exp(s
+// skew(theta)) ds, by Gauss-Legendre quadrature (independent of the closed
+// form), for small, medium and near-2pi angles; and V V^-1 = I.
+TEST(LieGroups, LeftJacobianIsTheAverageRotation)
+{
+  const double nodes[5]   = {-0.9061798459386640, -0.5384693101056831, 0,
+                             0.5384693101056831, 0.9061798459386640};
+  const double weights[5] = {0.2369268850561891, 0.4786286704993665,
+                             0.5688888888888889, 0.4786286704993665,
+                             0.2369268850561891};
+  const dealii::Tensor<1, 3> axis({0.48, -0.6, 0.64});
+  for (const double angle : {1e-5, 5e-4, 0.52, 2.0, 5.5})
+  {
+    // Composite rule on 20 panels: exact to about 1e-15 for these angles.
+    dealii::Tensor<2, 3> average;
+    const unsigned int   panels = 20;
+    for (unsigned int p = 0; p < panels; ++p)
+      for (unsigned int k = 0; k < 5; ++k)
+      {
+        const double s = (p + 0.5 * (1 + nodes[k])) / panels;
+        average += (0.5 * weights[k] / panels) * rotation_exp(s * angle * axis);
+      }
+    const dealii::Tensor<2, 3> V = so3_left_jacobian(angle * axis);
+    const dealii::Tensor<2, 3> product =
+        V * so3_left_jacobian_inverse(angle * axis);
+    for (unsigned int i = 0; i < 3; ++i)
+      for (unsigned int j = 0; j < 3; ++j)
+      {
+        EXPECT_NEAR(V[i][j], average[i][j], 1e-13) << "angle " << angle;
+        EXPECT_NEAR(product[i][j], i == j ? 1 : 0, 1e-12) << "angle " << angle;
+      }
+  }
+}

@@ -2,6 +2,7 @@
 
 #include <coshell/contact/contact.h>
 #include <coshell/driver/stage.h>
+#include <coshell/io/checkpoint.h>
 #include <coshell/io/json.h>
 #include <coshell/io/results.h>
 #include <coshell/io/vtu_output.h>
@@ -24,6 +25,7 @@
 #include <functional>
 #include <istream>
 #include <map>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -59,6 +61,14 @@ namespace coshell::driver
     /// README, "Interactive coupling").
     void drive_interactively(std::istream &commands, std::ostream &replies);
 
+    /// Resumes the run from a checkpoint written by Output/Checkpoint
+    /// interval or on SIGINT/SIGTERM: the stages before the checkpoint's
+    /// are skipped, its stage continues from its time, and the earlier
+    /// run's CSV files and PVD series next to the checkpoint are carried
+    /// over up to its step. Throws std::invalid_argument naming the file
+    /// when it cannot be read or does not fit this scene.
+    void restart_from(const std::string &file);
+
   private:
     std::string                 prm_file_;
     mesh::MeshParameters        mesh_;
@@ -83,6 +93,14 @@ namespace coshell::driver
     std::chrono::steady_clock::time_point advance_started_;
     io::VtuOutput                         output_;
     std::vector<io::LevelResult>          levels_;
+    /// Output/Checkpoint interval, s of simulated time (0: none), the
+    /// time of the next checkpoint, and the checkpoint to resume from.
+    double                        checkpoint_interval_  = 0;
+    double                        next_checkpoint_time_ = 0;
+    std::optional<io::Checkpoint> restart_;
+    std::string                   restart_file_;
+    /// The time integrator's carry-over within the current dynamic stage.
+    solvers::TimeIntegration::Carry carry_;
 
     io::Json        run_level(unsigned int       level,
                               const std::string &directory,
@@ -127,6 +145,27 @@ namespace coshell::driver
                                   const std::string   &directory,
                                   std::ostream        &log);
     bool        has_dynamic_stage() const;
+    /// Checkpointing (scene_checkpoint.cc): the earlier run's CSV rows
+    /// up to the restart's step (curve, Newton history, time history), read
+    /// before this run overwrites those files; the restored state and
+    /// outputs; the checkpoint after a dynamic step when one is due or a
+    /// signal came (then throws Interrupted); the signal check of static
+    /// steps.
+    std::vector<std::string> read_earlier_outputs() const;
+    void                     restore_checkpoint(model::ShellState              &state,
+                                                StagedOutput                   &out,
+                                                const std::vector<std::string> &earlier,
+                                                const std::string              &directory,
+                                                std::ostream                   &log);
+    void                     checkpoint_step(const model::ShellProblem &problem,
+                                             const StagedOutput        &out,
+                                             const Stage               &stage,
+                                             double                     time,
+                                             const std::string         &directory,
+                                             std::ostream              &log);
+    static void              stop_if_interrupted_in_static_stage();
+    /// Whether stage 'number' is skipped or resumed by the restart.
+    bool skipped_by_restart(unsigned int stage_number) const;
     /// Runs the time integration of a dynamic stage from 'start' to
     /// 'end', or, when driven interactively, to each target read until
     /// the stage's end, "quit" or the end of the input; returns the time

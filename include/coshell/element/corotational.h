@@ -110,4 +110,12 @@ namespace coshell::element
   /// Rotation vector of R with angle in [0, pi] (quaternion via Shepperd's
   /// method, angle via atan2), accurate near 0 and near pi.
   dealii::Tensor<1, 3> rotation_log(const dealii::Tensor<2, 3> &rotation);
+
+  /// The left Jacobian of SO(3), V(theta) = sum_k skew(theta)^k / (k+1)!:
+  /// the translation part of the SE(3) exponential, exp(u, theta) =
+  /// (V(theta) u, exp(skew(theta))). Accurate for all angles below 2 pi.
+  dealii::Tensor<2, 3> so3_left_jacobian(const dealii::Tensor<1, 3> &theta);
+  /// Its inverse (the translation part of the SE(3) logarithm).
+  dealii::Tensor<2, 3>
+  so3_left_jacobian_inverse(const dealii::Tensor<1, 3> &theta);
 } // namespace coshell::element

@@ -19,13 +19,25 @@ namespace coshell::io
     void row(const std::vector<double> &values);
     /// Closes and renames the file.
     void finish();
+    /// Rows written so far (the header not counted).
+    unsigned int rows() const;
+    /// Appends the rows of 'earlier' (a header line and rows, as
+    /// read_earlier_rows() returns) when its header is this file's
+    /// (a restart). Returns false, appending nothing, otherwise.
+    bool resume(const std::string &earlier);
 
     const std::string &path() const;
 
   private:
-    std::string   path_;
+    std::string   path_, header_;
     std::ofstream out_;
+    unsigned int  rows_ = 0;
   };
+
+  /// The header and first 'rows' rows of an earlier run's CSV file (PATH,
+  /// or PATH.partial if the run did not finish), read before a new run
+  /// overwrites it; "" when it is missing or shorter.
+  std::string read_earlier_rows(const std::string &path, unsigned int rows);
 
   /// "a,b,c" for the names.
   std::string join(const std::vector<std::string> &names);

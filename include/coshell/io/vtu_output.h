@@ -50,6 +50,15 @@ namespace coshell::io
       return write_vtu_;
     }
 
+    /// Entries of DIRECTORY's series so far (files and their companions).
+    unsigned int series_size(const std::string &directory) const;
+    /// Starts DIRECTORY's series with the first 'entries' entries of an
+    /// earlier run's .pvd (a restart). Returns false, leaving the series
+    /// empty, when that file is missing or shorter.
+    bool resume_series(const std::string &directory,
+                       const std::string &earlier_pvd,
+                       unsigned int       entries);
+
     /// Output directory from the prm ("Output/Directory").
     std::string directory = "output";
 

@@ -27,6 +27,10 @@ namespace coshell::model
     /// d(acceleration)/d(increment), 1/s^2, and d(velocity)/d(increment),
     /// 1/s, of the time integrator; 0 in statics.
     double acceleration_coefficient = 0, velocity_coefficient = 0;
+    /// Asks the inertia for d(force)/d(acceleration in the rates' layout),
+    /// the mass matrix, instead of its tangent (they differ with
+    /// body-frame translations).
+    bool rate_mass = false;
   };
 
   /// What a force is, for the force scale of Newton's convergence test and

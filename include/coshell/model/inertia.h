@@ -41,11 +41,15 @@ namespace coshell::model
   /// -(alpha M + beta K) v with K the linear stiffness of the current flat
   /// triangle (zero on rigid motions), and the viscous drag of the medium.
   /// Rotational rates are material (Omega); their spatial forms R Omega
-  /// enter the forces.
+  /// enter the forces. With body-frame translations (SE(3) integration) the
+  /// translational rates are v = R^T dx/dt and dx/dt = R v,
+  /// d2x/dt2 = R (dv/dt + Omega x v); the tangent then is not symmetric.
   class Inertia : public Contribution
   {
   public:
-    Inertia(const ShellModel &model, const InertiaParameters &parameters);
+    Inertia(const ShellModel        &model,
+            const InertiaParameters &parameters,
+            bool                     body_frame_translations = false);
 
     std::string name() const override;
     ForceKind   kind() const override;
@@ -71,11 +75,35 @@ namespace coshell::model
 
     element::MassProperties mass_properties(const CellIterator &cell) const;
 
-    /// The cell's rates in global axes (rotations spatial).
-    std::array<double, element::shell_dofs>
-    spatial_rates(const CellIterator           &cell,
-                  const ShellState             &state,
-                  const dealii::Vector<double> &rates) const;
+    bool body_frame_translations_;
+
+    enum class Rate
+    {
+      velocity,
+      acceleration
+    };
+    /// The cell's velocities or accelerations in global axes (rotations
+    /// spatial).
+    std::array<double, element::shell_dofs> spatial_rates(
+        const CellIterator &cell, const ShellState &state, Rate rate) const;
+    /// 'matrix' times d(spatial rate)/d(increment), block diagonal per
+    /// vertex: 'coefficient' on every DoF (d rate / d q), and with
+    /// body-frame translations the derivative of R w (w = v, or dv/dt +
+    /// Omega x v with 'gyroscopic' = d v / d q) through the SE(3) step
+    /// increment, translations and rotations.
+    dealii::FullMatrix<double>
+    times_rate_jacobian(const dealii::FullMatrix<double> &matrix,
+                        const CellIterator               &cell,
+                        const ShellState                 &state,
+                        Rate                              rate,
+                        double                            coefficient,
+                        double                            gyroscopic) const;
+    /// The inertia's tangent (or, with point.rate_mass, the mass matrix in
+    /// the rates' layout) added to 'matrix'.
+    void add_inertia_tangent(const CellIterator               &cell,
+                             const EvaluationPoint            &point,
+                             const dealii::FullMatrix<double> &mass,
+                             dealii::FullMatrix<double>       &matrix) const;
     dealii::FullMatrix<double>
     damping(const CellIterator               &cell,
             const element::SpatialTriangle   &current,

@@ -78,6 +78,10 @@ namespace coshell::model
     void set_time(double time) override;
     void step_increment(dealii::Vector<double> &increment) const override;
     void set_step_increment(const dealii::Vector<double> &increment) override;
+    void step_displacement(const dealii::Vector<double> &increment,
+                           dealii::Vector<double> &displacement) const override;
+    void
+    set_step_displacement(const dealii::Vector<double> &displacement) override;
     dealii::Vector<double> &velocity() override;
     dealii::Vector<double> &acceleration() override;
     void set_rate_coefficients(double acceleration_coefficient,
@@ -87,8 +91,13 @@ namespace coshell::model
     /// Wall-clock seconds spent in evaluate() so far (assembly).
     double assembly_seconds() const;
 
-    const ShellState                        &state() const;
-    const ShellModel                        &model() const;
+    const ShellState &state() const;
+    /// The largest force scale of the stage's converged states, which
+    /// Newton's convergence test never goes below, counting the current
+    /// state as save() would; a restart sets it back.
+    double            converged_force_scale() const;
+    void              set_converged_force_scale(double scale);
+    const ShellModel &model() const;
     const dealii::AffineConstraints<double> &constraints() const;
 
     /// The active contribution of type T, or nullptr.

@@ -96,6 +96,21 @@ namespace coshell::solvers
     virtual void step_increment(dealii::Vector<double> &increment) const = 0;
     virtual void
     set_step_increment(const dealii::Vector<double> &increment) = 0;
+    /// The displacement from the saved configuration that a step increment
+    /// gives, in the layout admissible_fraction() reads (translations in
+    /// global axes), and the way to set one. They equal the step increment
+    /// unless translations are integrated in body frames (SE(3)), where a
+    /// step moves a vertex along a helix, not a straight line.
+    virtual void step_displacement(const dealii::Vector<double> &increment,
+                                   dealii::Vector<double> &displacement) const
+    {
+      displacement = increment;
+    }
+    virtual void
+    set_step_displacement(const dealii::Vector<double> &displacement)
+    {
+      set_step_increment(displacement);
+    }
     /// Rates (velocity, acceleration) in the layout of step increments.
     virtual dealii::Vector<double> &velocity()     = 0;
     virtual dealii::Vector<double> &acceleration() = 0;

@@ -22,6 +22,8 @@ namespace coshell::solvers
   /// - linearized implicit euler: one Newton correction of backward Euler
   ///   per step (Baraff & Witkin 1998, as SOFA and the seed paper).
   /// Time steps are cut on Newton failure and grown after easy steps.
+  /// With Lie group = SE3 the same schemes run on SE(3) per vertex: the
+  /// step increments and rates are the problem's body-frame ones.
   class TimeIntegration
   {
   public:
@@ -36,6 +38,22 @@ namespace coshell::solvers
       unsigned int iterations;
     };
     using StepObserver = std::function<void(const StepRecord &)>;
+
+    /// What the scheme carries from one step to the next besides the
+    /// problem's state: generalized alpha's pseudo-acceleration a_n and the
+    /// step controller's next size. Given to run(), it is updated after
+    /// every accepted step, and a run started from a filled one continues
+    /// exactly where the run that filled it stood (checkpoint and restart)
+    /// instead of starting afresh (a consistent initial acceleration).
+    struct Carry
+    {
+      dealii::Vector<double> pseudo_acceleration;
+      double                 step_size = 0; ///< s; 0: not filled
+      bool                   filled() const
+      {
+        return step_size > 0;
+      }
+    };
     using IterationObserver =
         std::function<void(unsigned int step, const NewtonIteration &)>;
 
@@ -51,16 +69,20 @@ namespace coshell::solvers
                      unsigned int             first_step,
                      const StepObserver      &on_step,
                      const IterationObserver &on_iteration,
-                     std::ostream            &log) const;
+                     std::ostream            &log,
+                     Carry                   *carry = nullptr) const;
 
     const std::string &method() const;
     double             end_time() const;
+    /// Lie group = SE3: body-frame translations (ShellState).
+    bool se3() const;
 
     /// The rates of one scheme as functions of the step increment.
     struct Scheme;
 
   private:
     std::string  method_            = "generalized alpha";
+    bool         se3_               = false;
     double       time_step_         = 1e-3;
     double       min_time_step_     = 1e-9;
     double       max_time_step_     = 1e-3;

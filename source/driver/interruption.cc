@@ -1,0 +1,27 @@
+#include <coshell/driver/interruption.h>
+
+#include <csignal>
+
+namespace coshell::driver
+{
+  namespace
+  {
+    volatile std::sig_atomic_t received_signal = 0;
+
+    extern "C" void remember_signal(int signal)
+    {
+      received_signal = signal;
+    }
+  } // namespace
+
+  void install_interrupt_handlers()
+  {
+    std::signal(SIGINT, remember_signal);
+    std::signal(SIGTERM, remember_signal);
+  }
+
+  int interrupt_signal()
+  {
+    return received_signal;
+  }
+} // namespace coshell::driver

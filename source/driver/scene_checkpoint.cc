@@ -1,0 +1,194 @@
+// Checkpoint and restart of staged runs: Output/Checkpoint interval,
+// SIGINT/SIGTERM, and `coshell scene.prm --restart FILE`.
+
+#include <coshell/driver/interruption.h>
+#include <coshell/driver/scene.h>
+#include <coshell/io/checkpoint.h>
+#include <coshell/io/csv_file.h>
+
+#include "staged_output.h"
+
+#include <cmath>
+#include <csignal>
+#include <filesystem>
+#include <iomanip>
+#include <sstream>
+
+namespace coshell::driver
+{
+  namespace
+  {
+    /// The CSV files a staged run writes, in the order of csv_rows.
+    const std::vector<std::string> csv_files = {
+        "load_displacement.csv", "newton_history.csv", "time_history.csv"};
+
+    std::string checkpoint_name(unsigned int step)
+    {
+      std::ostringstream name;
+      name << "checkpoint-" << std::setw(6) << std::setfill('0') << step
+           << ".h5";
+      return name.str();
+    }
+
+    std::string earlier_directory(const std::string &restart_file)
+    {
+      const auto parent = std::filesystem::path(restart_file).parent_path();
+      return parent.empty() ? "." : parent.string();
+    }
+  } // namespace
+
+  void Scene::restart_from(const std::string &file)
+  {
+    io::Checkpoint    checkpoint = io::read_checkpoint(file);
+    const std::string where      = "restart file '" + file + "': ";
+    const auto       &list       = stages_.list();
+    if (checkpoint.stage < 1 || checkpoint.stage > list.size() ||
+        list[checkpoint.stage - 1].analysis != "dynamic")
+      throw std::invalid_argument(where + "it was written in stage " +
+                                  std::to_string(checkpoint.stage) +
+                                  ", which is not a dynamic stage "
+                                  "of this scene (another scene file?)");
+    if (contact_.enabled())
+      throw std::invalid_argument(
+          where + "restarts do not carry the contact state yet (barrier "
+                  "stiffness, lagging obstacles, friction); run without "
+                  "Contact or from the start");
+    if (mesh_.refinement_levels.size() > 1)
+      throw std::invalid_argument(where + "a refinement study cannot restart");
+    if (checkpoint.body_frame_translations != time_integration_.se3())
+      throw std::invalid_argument(
+          where + "it was written with another Time integration/Lie group");
+    restart_      = std::move(checkpoint);
+    restart_file_ = file;
+  }
+
+  bool Scene::skipped_by_restart(unsigned int stage_number) const
+  {
+    return restart_ && stage_number < restart_->stage;
+  }
+
+  std::vector<std::string> Scene::read_earlier_outputs() const
+  {
+    std::vector<std::string> texts(csv_files.size());
+    if (!restart_)
+      return texts;
+    const std::string directory = earlier_directory(restart_file_);
+    for (unsigned int k = 0;
+         k < csv_files.size() && k < restart_->csv_rows.size(); ++k)
+      texts[k] = io::read_earlier_rows(directory + "/" + csv_files[k],
+                                       restart_->csv_rows[k]);
+    return texts;
+  }
+
+  void Scene::restore_checkpoint(model::ShellState              &state,
+                                 StagedOutput                   &out,
+                                 const std::vector<std::string> &earlier,
+                                 const std::string              &directory,
+                                 std::ostream                   &log)
+  {
+    const io::Checkpoint &c = *restart_;
+    try
+    {
+      state.load(c.values, c.rotations, c.velocity, c.acceleration);
+    }
+    catch (const std::invalid_argument &error)
+    {
+      throw std::invalid_argument("restart file '" + restart_file_ +
+                                  "': " + error.what());
+    }
+    out.step              = c.step;
+    out.last_written      = c.last_written;
+    out.external_work     = c.external_work;
+    out.dissipated_energy = c.dissipated_energy;
+    carry_                = {c.pseudo_acceleration, c.step_size};
+    io::CsvFile *files[]  = {&out.curve, &out.history,
+                            out.time_history ? &*out.time_history : nullptr};
+    bool         carried  = true;
+    for (unsigned int k = 0; k < earlier.size(); ++k)
+      if (files[k] && !earlier[k].empty())
+        carried = files[k]->resume(earlier[k]) && carried;
+      else if (files[k] && k < c.csv_rows.size() && c.csv_rows[k] > 0)
+        carried = false;
+    const std::string pvd = earlier_directory(restart_file_) + "/solution.pvd";
+    if (c.pvd_entries > 0 &&
+        !output_.resume_series(directory, pvd, c.pvd_entries))
+      carried = false;
+    log << "restarting from " << restart_file_ << ": stage " << c.stage
+        << ", t = " << c.time << " s, step " << c.step << '\n';
+    if (!carried)
+      log << "  note: the earlier run's CSV files or solution.pvd are not "
+             "next to the checkpoint (or are shorter); the histories start "
+             "at the restart\n";
+    // The next multiple of the interval, as in the run that wrote it.
+    next_checkpoint_time_ =
+        checkpoint_interval_ *
+        (std::floor(c.time / std::max(checkpoint_interval_, 1e-300) + 1e-9) +
+         1);
+  }
+
+  void Scene::checkpoint_step(const model::ShellProblem &problem,
+                              const StagedOutput        &out,
+                              const Stage               &stage,
+                              double                     time,
+                              const std::string         &directory,
+                              std::ostream              &log)
+  {
+    const int  signal = interrupt_signal();
+    const bool due =
+        checkpoint_interval_ > 0 &&
+        time >= next_checkpoint_time_ - 1e-9 * checkpoint_interval_;
+    if (!due && signal == 0)
+      return;
+    if (contact_.enabled())
+    {
+      if (signal != 0)
+        throw Interrupted("stopped by signal " + std::to_string(signal) +
+                          " at t = " + std::to_string(time) +
+                          " s; no checkpoint (restarts do not carry the "
+                          "contact state yet)");
+      return;
+    }
+    io::Checkpoint c;
+    c.prm_file                = prm_file_;
+    c.stage                   = stage.number;
+    c.step                    = out.step;
+    c.last_written            = out.last_written;
+    c.time                    = time;
+    c.step_size               = carry_.step_size;
+    c.pseudo_acceleration     = carry_.pseudo_acceleration;
+    c.converged_force_scale   = problem.converged_force_scale();
+    c.values                  = problem.state().values();
+    c.rotations               = problem.state().rotations();
+    c.velocity                = problem.state().velocity();
+    c.acceleration            = problem.state().acceleration();
+    c.body_frame_translations = problem.state().body_frame_translations();
+    c.external_work           = out.external_work;
+    c.dissipated_energy       = out.dissipated_energy;
+    c.generalized_force       = out.generalized_force;
+    c.damping_force           = out.damping_force;
+    c.csv_rows                = {out.curve.rows(), out.history.rows(),
+                  out.time_history ? out.time_history->rows() : 0u};
+    c.pvd_entries             = output_.series_size(directory);
+    const std::string file    = directory + "/" + checkpoint_name(out.step);
+    io::write_checkpoint(c, file);
+    while (checkpoint_interval_ > 0 &&
+           next_checkpoint_time_ <= time + 1e-9 * checkpoint_interval_)
+      next_checkpoint_time_ += checkpoint_interval_;
+    if (signal == 0)
+      return;
+    log << "checkpoint written to " << file << '\n';
+    throw Interrupted("stopped by signal " + std::to_string(signal) +
+                      " at t = " + std::to_string(time) +
+                      " s; checkpoint written to " + file +
+                      "; resume with --restart " + file);
+  }
+
+  void Scene::stop_if_interrupted_in_static_stage()
+  {
+    if (const int signal = interrupt_signal())
+      throw Interrupted("stopped by signal " + std::to_string(signal) +
+                        " in a static stage; no checkpoint (static stages "
+                        "are not checkpointed: a restart resumes dynamic "
+                        "stages)");
+  }
+} // namespace coshell::driver

@@ -1,0 +1,47 @@
+#pragma once
+
+// The outputs a staged run writes as it goes, shared by the scene's
+// stage loop (scene.cc) and its checkpointing (scene_checkpoint.cc).
+
+#include <coshell/contact/contact.h>
+#include <coshell/driver/scene.h>
+#include <coshell/io/csv_file.h>
+
+#include <deal.II/lac/vector.h>
+
+#include <limits>
+#include <optional>
+
+namespace coshell::driver
+{
+  using dealii::Vector;
+
+  struct Scene::StagedOutput
+  {
+    StagedOutput(io::CsvFile &&curve, io::CsvFile &&history)
+        : curve(std::move(curve)), history(std::move(history))
+    {
+    }
+
+    io::CsvFile                curve, history;
+    std::optional<io::CsvFile> time_history, contact_forces;
+    /// The contact of the run (nullptr when Contact is off), and the
+    /// extremes of its gap over every iterate of the run.
+    contact::Contact *contact      = nullptr;
+    double            smallest_gap = std::numeric_limits<double>::infinity();
+    double            largest_penetration = 0;
+    unsigned int      step = 0, last_written = 0;
+    /// Energy bookkeeping of the dynamic stages: work of the loads and
+    /// reactions, energy dissipated by damping and drag (trapezoidal in
+    /// time), and the working and damping forces of the last step. Both
+    /// works use the trapezoidal rule on the step increment, the rule the
+    /// time integrator itself conserves energy with at rho_inf = 1.
+    double         external_work = 0, dissipated_energy = 0;
+    Vector<double> generalized_force, damping_force;
+    /// The work of every contact force on the shell (obstacles, friction,
+    /// self contact), trapezoidal like the others, and the contact force
+    /// of the last step.
+    double         contact_work = 0;
+    Vector<double> contact_force;
+  };
+} // namespace coshell::driver

@@ -1,0 +1,230 @@
+#include <coshell/io/checkpoint.h>
+
+#include <deal.II/base/hdf5.h>
+#include <deal.II/lac/full_matrix.h>
+
+#include <filesystem>
+#include <stdexcept>
+
+namespace coshell::io
+{
+  using namespace dealii;
+
+  namespace
+  {
+    /// Vectors are written only when filled (deal.II's wrappers make no
+    /// empty datasets); attribute "has_NAME" says which are there.
+    void write_vector(HDF5::File           &file,
+                      const std::string    &name,
+                      const Vector<double> &vector)
+    {
+      file.set_attribute("has_" + name, vector.size() > 0 ? 1u : 0u);
+      if (vector.size() > 0)
+        file.create_dataset<double>(name, {vector.size()}).write(vector);
+    }
+
+    bool has_dataset(const HDF5::File &file, const std::string &name)
+    {
+      return file.get_attribute<unsigned int>("has_" + name) != 0;
+    }
+
+    Vector<double> read_vector(const HDF5::File  &file,
+                               const std::string &name,
+                               std::size_t        size)
+    {
+      if (!has_dataset(file, name))
+        return {};
+      auto result = file.open_dataset(name).read<Vector<double>>();
+      if (size != 0 && result.size() != size)
+        throw std::invalid_argument(
+            "dataset '" + name + "' has " + std::to_string(result.size()) +
+            " entries, expected " + std::to_string(size));
+      return result;
+    }
+
+    void write_rotations(HDF5::File                      &file,
+                         const std::vector<Tensor<2, 3>> &rotations)
+    {
+      FullMatrix<double> matrix(rotations.size(), 9);
+      for (unsigned int v = 0; v < rotations.size(); ++v)
+        for (unsigned int k = 0; k < 9; ++k)
+          matrix(v, k) = rotations[v][k / 3][k % 3];
+      file.create_dataset<double>("rotations", {rotations.size(), 9})
+          .write(matrix);
+    }
+
+    std::vector<Tensor<2, 3>> read_rotations(const HDF5::File &file)
+    {
+      const auto matrix =
+          file.open_dataset("rotations").read<FullMatrix<double>>();
+      if (matrix.n() != 9)
+        throw std::invalid_argument("dataset 'rotations' must have 9 columns");
+      std::vector<Tensor<2, 3>> rotations(matrix.m());
+      for (unsigned int v = 0; v < matrix.m(); ++v)
+        for (unsigned int k = 0; k < 9; ++k)
+          rotations[v][k / 3][k % 3] = matrix(v, k);
+      return rotations;
+    }
+  } // namespace
+
+  void write_checkpoint(const Checkpoint &checkpoint, const std::string &path)
+  {
+    const std::string partial = path + ".partial";
+    {
+      HDF5::File file(partial, HDF5::File::FileAccessMode::create);
+      file.set_attribute("format", std::string(checkpoint_format));
+      file.set_attribute("prm_file", checkpoint.prm_file);
+      file.set_attribute("stage", checkpoint.stage);
+      file.set_attribute("step", checkpoint.step);
+      file.set_attribute("last_written", checkpoint.last_written);
+      file.set_attribute("pvd_entries", checkpoint.pvd_entries);
+      file.set_attribute("time", checkpoint.time);
+      file.set_attribute("step_size", checkpoint.step_size);
+      file.set_attribute("converged_force_scale",
+                         checkpoint.converged_force_scale);
+      file.set_attribute("external_work", checkpoint.external_work);
+      file.set_attribute("dissipated_energy", checkpoint.dissipated_energy);
+      file.set_attribute("body_frame_translations",
+                         checkpoint.body_frame_translations ? 1u : 0u);
+      write_vector(file, "values", checkpoint.values);
+      write_vector(file, "velocity", checkpoint.velocity);
+      write_vector(file, "acceleration", checkpoint.acceleration);
+      write_vector(file, "pseudo_acceleration", checkpoint.pseudo_acceleration);
+      write_vector(file, "generalized_force", checkpoint.generalized_force);
+      write_vector(file, "damping_force", checkpoint.damping_force);
+      write_rotations(file, checkpoint.rotations);
+      file.set_attribute("has_csv_rows", checkpoint.csv_rows.empty() ? 0u : 1u);
+      if (!checkpoint.csv_rows.empty())
+        file.create_dataset<unsigned int>("csv_rows",
+                                          {checkpoint.csv_rows.size()})
+            .write(checkpoint.csv_rows);
+    }
+    std::filesystem::rename(partial, path);
+  }
+
+  namespace
+  {
+    Checkpoint read_fields(const HDF5::File &file)
+    {
+      Checkpoint c;
+      if (file.get_attribute<std::string>("format") != checkpoint_format)
+        throw std::invalid_argument("not a CoShell checkpoint (attribute "
+                                    "'format' is not '" +
+                                    std::string(checkpoint_format) + "')");
+      c.prm_file     = file.get_attribute<std::string>("prm_file");
+      c.stage        = file.get_attribute<unsigned int>("stage");
+      c.step         = file.get_attribute<unsigned int>("step");
+      c.last_written = file.get_attribute<unsigned int>("last_written");
+      c.pvd_entries  = file.get_attribute<unsigned int>("pvd_entries");
+      c.time         = file.get_attribute<double>("time");
+      c.step_size    = file.get_attribute<double>("step_size");
+      c.converged_force_scale =
+          file.get_attribute<double>("converged_force_scale");
+      c.external_work     = file.get_attribute<double>("external_work");
+      c.dissipated_energy = file.get_attribute<double>("dissipated_energy");
+      c.body_frame_translations =
+          file.get_attribute<unsigned int>("body_frame_translations") != 0;
+      c.values              = read_vector(file, "values", 0);
+      const std::size_t n   = c.values.size();
+      c.velocity            = read_vector(file, "velocity", n);
+      c.acceleration        = read_vector(file, "acceleration", n);
+      c.pseudo_acceleration = read_vector(file, "pseudo_acceleration", n);
+      c.generalized_force   = read_vector(file, "generalized_force", n);
+      c.damping_force       = read_vector(file, "damping_force", n);
+      c.rotations           = read_rotations(file);
+      if (has_dataset(file, "csv_rows"))
+        c.csv_rows =
+            file.open_dataset("csv_rows").read<std::vector<unsigned int>>();
+      if (n == 0 || c.velocity.size() != n || !(c.step_size > 0))
+        throw std::invalid_argument(
+            "incomplete: it needs 'values', 'velocity' and a positive "
+            "'step_size'");
+      return c;
+    }
+  } // namespace
+
+  namespace
+  {
+    /// What a checkpoint lacks, checked with HDF5's C interface: deal.II's
+    /// wrappers do not check in release builds and crash on a missing
+    /// attribute. "" when complete.
+    std::string missing_parts(const std::string &path)
+    {
+      const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+      if (file < 0)
+        return "HDF5 cannot open it";
+      std::string missing;
+      const auto  note = [&](const std::string &what)
+      { missing += (missing.empty() ? "" : ", ") + what; };
+      if (H5Aexists(file, "format") <= 0)
+        note("attribute 'format'");
+      else
+      {
+        const hid_t attribute = H5Aopen(file, "format", H5P_DEFAULT);
+        const hid_t type      = H5Aget_type(attribute);
+        if (H5Tget_class(type) != H5T_STRING || H5Tis_variable_str(type) <= 0)
+          note("attribute 'format' as a string");
+        H5Tclose(type);
+        H5Aclose(attribute);
+      }
+      if (!missing.empty()) // not ours at all: the rest would be noise
+      {
+        H5Fclose(file);
+        return missing;
+      }
+      for (const char *name :
+           {"prm_file", "stage", "step", "last_written", "pvd_entries", "time",
+            "step_size", "converged_force_scale", "external_work",
+            "dissipated_energy", "body_frame_translations", "has_values",
+            "has_velocity", "has_acceleration", "has_pseudo_acceleration",
+            "has_generalized_force", "has_damping_force", "has_csv_rows"})
+        if (H5Aexists(file, name) <= 0)
+          note(std::string("attribute '") + name + "'");
+      for (const char *name :
+           {"values", "velocity", "acceleration", "rotations"})
+        if (H5Lexists(file, name, H5P_DEFAULT) <= 0)
+          note(std::string("dataset '") + name + "'");
+      H5Fclose(file);
+      return missing;
+    }
+  } // namespace
+
+  Checkpoint read_checkpoint(const std::string &path)
+  {
+    const std::string where = "restart file '" + path + "': ";
+    if (!std::filesystem::is_regular_file(path))
+      throw std::invalid_argument(where + "no such file");
+    // HDF5 prints its own error stack on failures; the message below says
+    // it in one line instead.
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+    if (H5Fis_hdf5(path.c_str()) <= 0)
+      throw std::invalid_argument(where + "not an HDF5 file");
+    if (const std::string missing = missing_parts(path); !missing.empty())
+      throw std::invalid_argument(
+          where + "not a CoShell checkpoint, it lacks " + missing);
+    // deal.II's HDF5 objects abort the program when destroyed while an
+    // exception is in flight, so errors are caught inside the file's scope
+    // and thrown after it closed.
+    Checkpoint  checkpoint;
+    std::string problem;
+    {
+      const HDF5::File file(path, HDF5::File::FileAccessMode::open);
+      try
+      {
+        checkpoint = read_fields(file);
+      }
+      catch (const std::invalid_argument &error)
+      {
+        problem = error.what();
+      }
+      catch (const std::exception &)
+      {
+        problem = "not a readable CoShell checkpoint (a dataset or "
+                  "attribute is missing or of the wrong type)";
+      }
+    }
+    if (!problem.empty())
+      throw std::invalid_argument(where + problem);
+    return checkpoint;
+  }
+} // namespace coshell::io

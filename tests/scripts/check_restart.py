@@ -1,0 +1,222 @@
+#!/usr/bin/env python3
+"""Checkpoint and restart of a dynamic scene (issue: scale-out, item 5).
+
+check_restart.py --coshell BIN --prm FILE --output DIR [--set A/B=v ...]
+                 --end T [--end-parameter "Stage 2/Duration"] --interval DT
+                 --tolerance TOL
+
+1. Run A to T with Output/Checkpoint interval = DT.  Every checkpoint holds
+   the datasets and attributes a restart needs (read with h5py), its
+   rotation matrices are orthonormal, and its time is past a multiple of DT.
+2. Run B from A's middle checkpoint: B's final checkpoint equals A's to TOL
+   (relative, every dataset), and B's time_history.csv has A's rows (the
+   earlier ones copied, the later ones recomputed; 12 printed digits).
+3. Run C to T and stop it with SIGINT half-way: exit status 3, a checkpoint
+   named in its message, no summary.json and no finished time_history.csv.
+   Run D from that checkpoint into C's directory: D's final checkpoint equals
+   A's to TOL and its time_history.csv has A's rows.
+"""
+import argparse
+import csv
+import glob
+import os
+import re
+import shutil
+import signal
+import subprocess
+import sys
+import time
+
+import h5py
+import numpy as np
+
+VECTORS = ["values", "velocity", "acceleration", "generalized_force",
+           "damping_force"]
+ATTRIBUTES = ["format", "stage", "step", "time", "step_size",
+              "converged_force_scale", "external_work", "dissipated_energy",
+              "pvd_entries", "last_written", "prm_file"]
+
+failures = []
+
+
+def check(condition, message):
+    print(("ok   " if condition else "FAIL ") + message)
+    if not condition:
+        failures.append(message)
+
+
+def run(args, directory, extra, **popen):
+    command = [args.coshell, args.prm, "--output", directory]
+    for assignment in args.set + extra:
+        command += ["--set", assignment]
+    return subprocess.Popen(command, stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True, **popen)
+
+
+def finish(process, what):
+    out, err = process.communicate()
+    if process.returncode != 0:
+        sys.stdout.write(out[-2000:] + err)
+        sys.exit(f"FAIL: {what} exited with status {process.returncode}")
+    return out
+
+
+def checkpoints(directory):
+    return sorted(glob.glob(os.path.join(directory, "checkpoint-*.h5")))
+
+
+def check_contents(path, interval):
+    with h5py.File(path, "r") as f:
+        missing = [a for a in ATTRIBUTES if a not in f.attrs]
+        missing += [d for d in VECTORS + ["rotations", "csv_rows"] if d not in f]
+        check(not missing, f"{os.path.basename(path)} holds every dataset "
+              f"and attribute (missing: {missing})")
+        if missing:
+            return
+        n = f["values"].shape[0]
+        sizes = {d: f[d].shape for d in VECTORS}
+        check(all(s == (n,) for s in sizes.values()),
+              f"vectors have the {n} DoFs: {sizes}")
+        rotations = f["rotations"][()].reshape(-1, 3, 3)
+        error = np.abs(np.einsum("vji,vjk->vik", rotations, rotations)
+                       - np.eye(3)).max()
+        check(error < 1e-12, f"rotations orthonormal to {error:.1e}")
+        t = float(f.attrs["time"])
+        check(t / interval - np.floor(t / interval + 1e-9) <
+              float(f.attrs["step_size"]) / interval + 1e-9,
+              f"written at t = {t:.6g} s, the first step past a multiple of "
+              f"{interval} s")
+
+
+def compare_checkpoints(a, b, tolerance, what):
+    with h5py.File(a, "r") as fa, h5py.File(b, "r") as fb:
+        worst = 0.0
+        for name in VECTORS + ["rotations", "pseudo_acceleration"]:
+            if name not in fa:
+                continue
+            x, y = fa[name][()], fb[name][()]
+            scale = max(np.abs(x).max(), 1e-300)
+            worst = max(worst, np.abs(x - y).max() / scale)
+        same_time = fa.attrs["time"] == fb.attrs["time"] and \
+            fa.attrs["step"] == fb.attrs["step"]
+    check(same_time and worst <= tolerance,
+          f"{what}: final state equals the uninterrupted run's, largest "
+          f"relative difference {worst:.2e} (tolerance {tolerance:g})")
+
+
+def rows(directory):
+    with open(os.path.join(directory, "time_history.csv")) as f:
+        return list(csv.reader(f))
+
+
+def compare_histories(a, b, what):
+    ra, rb = rows(a), rows(b)
+    worst = 0.0
+    for x, y in zip(ra[1:], rb[1:]):
+        for u, v in zip(x, y):
+            u, v = float(u), float(v)
+            worst = max(worst, abs(u - v) / max(abs(u), 1e-6))
+    check(len(ra) == len(rb) and ra[0] == rb[0] and worst < 1e-9,
+          f"{what}: time_history.csv has the uninterrupted run's {len(ra) - 1} "
+          f"rows (largest difference {worst:.1e} of a value)")
+
+
+def interrupt_half_way(args, directory, steps, timing):
+    process = run(args, directory, timing)
+    partial = os.path.join(directory, "time_history.csv.partial")
+    deadline = time.time() + 600
+    while process.poll() is None and time.time() < deadline:
+        if os.path.exists(partial) and \
+                sum(1 for _ in open(partial)) > steps // 2:
+            process.send_signal(signal.SIGINT)
+            break
+        time.sleep(0.01)
+    out, err = process.communicate()
+    return process.returncode, err
+
+
+def resume_and_compare(args, reference, directory, checkpoint, final, timing,
+                       name):
+    """Restarts from 'checkpoint' into 'directory'; its final checkpoint and
+    time history must be the uninterrupted run's (in 'reference')."""
+    command = [args.coshell, args.prm, "--output", directory, "--restart",
+               checkpoint]
+    for assignment in args.set + timing:
+        command += ["--set", assignment]
+    finish(subprocess.Popen(command, stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True),
+           f"the restarted run {name}")
+    compare_checkpoints(os.path.join(reference, final),
+                        os.path.join(directory, final), args.tolerance,
+                        f"{name} restarted from {os.path.basename(checkpoint)}")
+    compare_histories(reference, directory, name)
+
+
+def check_bad_files(args, good):
+    """A foreign HDF5 file and a checkpoint missing a dataset are refused
+    with a message naming the file and what is missing."""
+    foreign = os.path.join(args.output, "foreign.h5")
+    with h5py.File(foreign, "w") as f:
+        f["x"] = [1.0]
+    damaged = os.path.join(args.output, "damaged.h5")
+    shutil.copy(good, damaged)
+    with h5py.File(damaged, "a") as f:
+        del f["velocity"]
+    for path, expected in [(foreign, "lacks attribute 'format'"),
+                           (damaged, "lacks dataset 'velocity'")]:
+        result = subprocess.run(
+            [args.coshell, args.prm, "--restart", path, "--output",
+             os.path.join(args.output, "refused")],
+            capture_output=True, text=True)
+        check(result.returncode == 1 and path in result.stderr and
+              expected in result.stderr,
+              f"{os.path.basename(path)} refused: {result.stderr.strip()}")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__)
+    parser.add_argument("--coshell", required=True)
+    parser.add_argument("--prm", required=True)
+    parser.add_argument("--output", required=True)
+    parser.add_argument("--set", action="append", default=[])
+    parser.add_argument("--end", type=float, required=True)
+    parser.add_argument("--interval", type=float, required=True)
+    parser.add_argument("--end-parameter", default="Time integration/End time",
+                        help="the duration to set to --end (a staged "
+                        "scene: 'Stage k/Duration')")
+    parser.add_argument("--tolerance", type=float, default=1e-12)
+    args = parser.parse_args()
+    shutil.rmtree(args.output, ignore_errors=True)
+    a, b, c = (os.path.join(args.output, x) for x in ("A", "B", "C"))
+    timing = [f"{args.end_parameter}={args.end}",
+              f"Output/Checkpoint interval={args.interval}"]
+
+    finish(run(args, a, timing), "the uninterrupted run A")
+    written = checkpoints(a)
+    check(len(written) >= 3, f"run A wrote {len(written)} checkpoints")
+    for path in written:
+        check_contents(path, args.interval)
+    final = os.path.basename(written[-1])
+    middle = written[len(written) // 2 - 1]
+    with h5py.File(written[-1], "r") as f:
+        steps = int(f.attrs["step"])
+
+    resume_and_compare(args, a, b, middle, final, timing, "B")
+
+    status, message = interrupt_half_way(args, c, steps, timing)
+    named = re.search(r"checkpoint written to (\S+);", message)
+    check(status == 3 and named is not None,
+          f"SIGINT: exit status {status} (3 expected), message: "
+          f"{message.strip()[-200:]}")
+    check(not os.path.exists(os.path.join(c, "summary.json")) and
+          not os.path.exists(os.path.join(c, "time_history.csv")),
+          "SIGINT: no summary.json, time_history.csv still .partial")
+    if named:
+        resume_and_compare(args, a, c, named.group(1), final, timing, "D")
+    check_bad_files(args, written[len(written) // 2 - 1])
+    print(f"{len(failures)} failed")
+    sys.exit(1 if failures else 0)
+
+
+if __name__ == "__main__":
+    main()
