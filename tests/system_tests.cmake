@@ -40,3 +40,21 @@ include(${CMAKE_CURRENT_SOURCE_DIR}/obstacle_course_tests.cmake)
 include(${CMAKE_CURRENT_SOURCE_DIR}/dynamics_tests.cmake)
 include(${CMAKE_CURRENT_SOURCE_DIR}/contact_tests.cmake)
 include(${CMAKE_CURRENT_SOURCE_DIR}/iol_tests.cmake)
+
+# Output/Format = hdf5: HDF5 files with duplicate vertices merged and the
+# solution.xdmf index, read back with h5py: a static plate (its centre
+# deflection in the file equals summary.json's within single precision)
+# and a dynamic series (one grid per step at increasing times).
+set(CHECK_HDF5 ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_hdf5_output.py)
+add_test(NAME output.hdf5_xdmf.clamped_square
+  COMMAND ${COSHELL_PYTHON} ${CHECK_HDF5} --coshell $<TARGET_FILE:coshell>
+          --prm ${COSHELL_PRM}/plates/clamped_square_pressure.prm
+          --output ${CMAKE_CURRENT_BINARY_DIR}/output/output.hdf5_xdmf.clamped_square
+          --set "Mesh/Refinement levels=1" --qoi center_deflection 5 5 0)
+add_test(NAME output.hdf5_xdmf.free_flying_plate_series
+  COMMAND ${COSHELL_PYTHON} ${CHECK_HDF5} --coshell $<TARGET_FILE:coshell>
+          --prm ${COSHELL_PRM}/dynamics/free_flying_plate.prm
+          --output ${CMAKE_CURRENT_BINARY_DIR}/output/output.hdf5_xdmf.free_flying_plate
+          --set "Time integration/End time=0.1" --set "Output/Write VTU=true")
+set_tests_properties(output.hdf5_xdmf.clamped_square
+  output.hdf5_xdmf.free_flying_plate_series PROPERTIES LABELS system)

@@ -1,4 +1,5 @@
 #include <coshell/io/vtu_output.h>
+#include <coshell/solvers/parallel_environment.h>
 
 #include <deal.II/fe/fe_simplex_p.h>
 #include <deal.II/fe/mapping_fe.h>
@@ -20,8 +21,19 @@ namespace coshell::io
                       "Directory path where results go (the command "
                       "line's --output wins).");
     prm.declare_entry("Write VTU", "true", Patterns::Bool(),
-                      "Selects whether to write solution.vtu and "
-                      "solution.pvd for ParaView (true/false).");
+                      "Selects whether to write the fields for ParaView "
+                      "(true/false): solution.vtu and solution.pvd, or with "
+                      "Format = hdf5 solution.h5 and solution.xdmf.");
+    prm.declare_entry(
+        "Format", "vtu", Patterns::Selection("vtu|hdf5"),
+        "vtu: one NAME.vtu per output and solution.pvd listing them; hdf5: "
+        "one NAME.h5 (mesh with duplicate vertices merged, and the fields) "
+        "per output and solution.xdmf listing them with their times. "
+        "ParaView opens both (the .xdmf with its Xdmf reader). Cell fields "
+        "(N, M, material_id, thickness) become values at the merged "
+        "vertices, taken from one of the triangles around each. Obstacles "
+        "of contact scenes are VTU files either way, and a restart's "
+        ".xdmf lists only its own steps (dimensionless choice).");
     prm.declare_entry("Steps between outputs", "1", Patterns::Integer(0),
                       "Nonlinear runs: write every n-th converged load step "
                       "(0: only the last one); a step count "
@@ -34,6 +46,7 @@ namespace coshell::io
     prm.enter_subsection("Output");
     directory             = prm.get("Directory");
     write_vtu_            = prm.get_bool("Write VTU");
+    hdf5_                 = prm.get("Format") == "hdf5";
     steps_between_output_ = prm.get_integer("Steps between outputs");
     prm.leave_subsection();
   }
@@ -130,6 +143,8 @@ namespace coshell::io
     const MappingFE<2, 3> mapping(FE_SimplexP<2, 3>(1));
     data_out.build_patches(mapping);
     std::filesystem::create_directories(output_directory);
+    if (hdf5_)
+      return write_hdf5(data_out, output_directory, name, time);
     const std::string vtu = name + ".vtu";
     {
       std::ofstream out(output_directory + "/" + vtu);
@@ -149,6 +164,27 @@ namespace coshell::io
           << "\"/>\n";
     out << "</Collection>\n</VTKFile>\n";
     return pvd;
+  }
+
+  std::string VtuOutput::write_hdf5(const DataOut<2, 3> &data_out,
+                                    const std::string   &output_directory,
+                                    const std::string   &name,
+                                    double               time)
+  {
+    // deal.II writes HDF5 through MPI-IO; a serial run starts MPI here.
+    solvers::ensure_mpi_initialized();
+    DataOutBase::DataOutFilter filter(
+        DataOutBase::DataOutFilterFlags(true, true));
+    data_out.write_filtered_data(filter);
+    const std::string h5 = name + ".h5";
+    data_out.write_hdf5_parallel(filter, output_directory + "/" + h5,
+                                 MPI_COMM_SELF);
+    auto &series = xdmf_series_[output_directory];
+    series.push_back(
+        data_out.create_xdmf_entry(filter, h5, time, MPI_COMM_SELF));
+    const std::string xdmf = output_directory + "/solution.xdmf";
+    data_out.write_xdmf_file(series, xdmf, MPI_COMM_SELF);
+    return xdmf;
   }
 
   unsigned int VtuOutput::series_size(const std::string &directory) const

@@ -1,5 +1,8 @@
 #pragma once
 
+#include <deal.II/base/data_out_base.h>
+#include <deal.II/numerics/data_out.h>
+
 #include <coshell/model/shell_model.h>
 
 #include <deal.II/base/parameter_handler.h>
@@ -63,7 +66,16 @@ namespace coshell::io
     std::string directory = "output";
 
   private:
-    bool         write_vtu_            = true;
+    bool write_vtu_ = true;
+    /// Output/Format: VTU files and solution.pvd, or HDF5 files (duplicate
+    /// vertices filtered) and solution.xdmf.
+    bool                                                  hdf5_ = false;
+    std::map<std::string, std::vector<dealii::XDMFEntry>> xdmf_series_;
+
+    std::string  write_hdf5(const dealii::DataOut<2, 3> &data_out,
+                            const std::string           &output_directory,
+                            const std::string           &name,
+                            double                       time);
     unsigned int steps_between_output_ = 1;
     struct Entry
     {
