@@ -132,33 +132,49 @@ endforeach()
 
 # Stability: steps of 0.27 s, about 100 times the explicit limit
 # h_e / c = 0.088 / 33 s (membrane wave speed sqrt(E / rho (1 - nu^2))):
-# the implicit schemes stay bounded and the energy does not grow.
-# Generalized alpha needs rho_inf = 0 here: with rho_inf = 0.5 the energy
-# of this tumbling plate grows by 2.6 %, with 0.8 by 7.6 % (see
-# doc/validation.md).
+# the implicit schemes stay bounded and the total energy never exceeds its
+# value at the start (summary.json's initial_total_energy, 0.0946234).
+# Generalized alpha on R3xSO3 meets this for rho_inf <= 0.8 (largest energy
+# 0.0894 at rho_inf = 0.5 and 0.0938 at 0.8, after a first step that loses
+# 8 %); with the default rho_inf = 0.9 it reaches 2.18 (23 times, 871 cut
+# steps) and with 1 it gains 301 % (1559 cut steps; neither is a test). On
+# SE3 it holds at every rho_inf, 0.9 and 1 included (largest 0.09456 and
+# 0.09455). Linear
+# momentum only on R3xSO3 (not an invariant of the SE(3) scheme).
+# The linearized implicit Euler misses it: its one linear solve turns the
+# first 0.3 rad of tumbling into stretch, strain energy 2.40 (26 times the
+# start), which it then damps to 1e-4 within three steps. Asserted for it:
+# bounded, no growth after the first step (see doc/validation.md).
 set(large_steps --set "Time integration/Time step=0.27"
                 --set "Time integration/Maximum time step=0.27"
                 --set "Time integration/End time=10.8")
-foreach(method_radius "generalized alpha:0" "implicit euler:1" "linearized implicit euler:1")
-  string(REPLACE ":" ";" pair "${method_radius}")
-  list(GET pair 0 method)
-  list(GET pair 1 radius)
+foreach(case "generalized alpha:0:R3xSO3" "generalized alpha:0.5:R3xSO3"
+             "generalized alpha:0.8:R3xSO3" "implicit euler:1:R3xSO3"
+             "linearized implicit euler:1:R3xSO3" "generalized alpha:0.5:SE3"
+             "generalized alpha:0.8:SE3" "generalized alpha:0.9:SE3"
+             "generalized alpha:1:SE3")
+  string(REPLACE ":" ";" fields "${case}")
+  list(GET fields 0 method)
+  list(GET fields 1 radius)
+  list(GET fields 2 group)
   string(REPLACE " " "_" tag "${method}")
+  set(momentum --drift linear_momentum 1e-8 0.5)
+  set(energy --no-energy-growth 0)
+  if(method STREQUAL "linearized implicit euler")
+    set(energy --no-growth total_energy 0)
+  endif()
+  if(method STREQUAL "generalized alpha")
+    set(tag ${tag}_rho_${radius})
+  endif()
+  if(group STREQUAL "SE3")
+    set(tag ${tag}_se3)
+    set(momentum)
+  endif()
   coshell_dynamics_test(stability.free_flying_plate_100x_explicit_step.${tag}
     ${free_flying} ARGS ${large_steps} --set "Time integration/Method=${method}"
     --set "Time integration/Spectral radius=${radius}"
-    --no-growth total_energy 0 --drift linear_momentum 1e-8 0.5)
-endforeach()
-# On SE(3) generalized alpha stays bounded at every spectral radius: the
-# energy never exceeds its first value by more than 0.15 % (measured 0.15,
-# 0.14 and 0.10 % at rho_inf = 0.5, 0.8 and 1, with step cuts: 44, 89 and
-# 191 steps), where R3xSO3 gains 2.6 %, 7.6 % and 301 %. Asserted 0.3 %:
-# it fluctuates, it does not strictly stay below its start.
-foreach(radius 0.5 0.8 1)
-  coshell_dynamics_test(stability.free_flying_plate_100x_explicit_step.generalized_alpha_se3_rho_${radius}
-    ${free_flying} ARGS ${large_steps} --set "Time integration/Lie group=SE3"
-    --set "Time integration/Spectral radius=${radius}"
-    --no-growth total_energy 0.003)
+    --set "Time integration/Lie group=${group}"
+    ${energy} ${momentum})
 endforeach()
 
 # Displacement-driven stage then release: the strip rolled into a circle by

@@ -17,6 +17,7 @@
 #include <coshell/solvers/parallel_environment.h>
 
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -613,6 +614,9 @@ namespace coshell::driver
       out.generalized_force = restart_->generalized_force;
       out.damping_force     = restart_->damping_force;
     }
+    else if (std::isnan(result.initial_total_energy))
+      result.initial_total_energy = inertia->measures(state).kinetic_energy +
+                                    internal->strain_energy(state);
     Vector<double> damping_force(model.n_dofs());
 
     const auto wall    = std::chrono::steady_clock::now();

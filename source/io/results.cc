@@ -42,6 +42,8 @@ namespace coshell::io
     {
       json["steps"]            = steps;
       json["simulated_time_s"] = simulated_time_s;
+      if (!std::isnan(initial_total_energy))
+        json["initial_total_energy"] = initial_total_energy;
       // Simulated time over the wall time of the time stepping.
       Json &stepping            = json["time_stepping_s"];
       stepping["total"]         = dynamic_wall_time_s;

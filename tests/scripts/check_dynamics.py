@@ -15,6 +15,9 @@ references given here (only the rows of --stage N when given).
                                 SCALE 'initial' uses |c(0)|
      [--no-growth COLUMN RTOL]  COLUMN never exceeds its first value by more
                                 than RTOL of it (stability)
+     [--no-energy-growth RTOL]  total_energy never exceeds the energy at
+                                the start (summary.json's
+                                initial_total_energy) by more than RTOL of it
      [--energy-balance RTOL]    total_energy - external_work +
                                 dissipated_energy stays at its first value
                                 within RTOL of the largest of |external_work|
@@ -26,6 +29,7 @@ Prints a line per check and 'N passed, M failed'; exits 1 on a failure.
 """
 import argparse
 import csv
+import json
 import math
 import os
 import shutil
@@ -74,6 +78,7 @@ def main():
     parser.add_argument("--no-growth", nargs=2, action="append", default=[])
     parser.add_argument("--final", nargs=3, action="append", default=[])
     parser.add_argument("--energy-balance", type=float)
+    parser.add_argument("--no-energy-growth", type=float)
     parser.add_argument("--report")
     args = parser.parse_args()
 
@@ -131,6 +136,16 @@ def main():
         check(growth <= float(rtol),
               f"{column} growth {growth:.3e} of its first value (limit {rtol})",
               f"growth_{column}", growth)
+    if args.no_energy_growth is not None:
+        with open(os.path.join(args.output, "summary.json")) as f:
+            initial = json.load(f)["initial_total_energy"]
+        values = columns(rows, "total_energy")
+        growth = (max(values) - initial) / abs(initial)
+        check(growth <= args.no_energy_growth,
+              f"total_energy: largest {max(values):.6g} against "
+              f"{initial:.6g} at the start, growth {growth:.3e} "
+              f"(limit {args.no_energy_growth})",
+              "growth_from_start_total_energy", growth)
     if args.energy_balance is not None:
         energy, work, dissipated = (columns(rows, c) for c in
                                     ("total_energy", "external_work", "dissipated_energy"))

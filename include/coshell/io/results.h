@@ -2,6 +2,7 @@
 
 #include <coshell/io/json.h>
 
+#include <limits>
 #include <map>
 #include <string>
 #include <vector>
@@ -32,6 +33,9 @@ namespace coshell::io
     /// stepping took (s), whose ratio is the real-time factor.
     unsigned int steps            = 0;
     double       simulated_time_s = 0, dynamic_wall_time_s = 0;
+    /// Kinetic + strain energy at the start of the first dynamic stage
+    /// (the reference of "the energy does not grow"); NaN: none.
+    double initial_total_energy = std::numeric_limits<double>::quiet_NaN();
     /// Of that wall time: residual/tangent assembly and linear solver.
     double dynamic_assembly_s = 0, dynamic_linear_solver_s = 0;
     std::map<std::string, double> qoi, reference;
