@@ -243,7 +243,8 @@ add_test(NAME restart.free_flying_plate
           --output ${CMAKE_CURRENT_BINARY_DIR}/output/restart.free_flying_plate
           --set "Time integration/Time step=0.005"
           --set "Time integration/Maximum time step=0.005"
-          --end 1 --interval 0.25 --tolerance 1e-12)
+          --end 1 --interval 0.25 --tolerance 1e-12
+          --interactive-targets 0.3 0.7)
 add_test(NAME restart.strip_roll_up_then_release
   COMMAND ${COSHELL_PYTHON} ${CHECK_RESTART} --coshell $<TARGET_FILE:coshell>
           --prm ${COSHELL_PRM}/dynamics/strip_roll_up.prm

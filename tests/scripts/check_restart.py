@@ -15,6 +15,8 @@ check_restart.py --coshell BIN --prm FILE --output DIR [--set A/B=v ...]
    named in its message, no summary.json and no finished time_history.csv.
    Run D from that checkpoint into C's directory: D's final checkpoint equals
    A's to TOL and its time_history.csv has A's rows.
+4. With --interactive-targets T1 T2 ...: run E through --interactive to
+   those times and T; its final checkpoint equals A's to TOL.
 """
 import argparse
 import csv
@@ -88,10 +90,11 @@ def check_contents(path, interval):
               f"{interval} s")
 
 
-def compare_checkpoints(a, b, tolerance, what):
+def compare_checkpoints(a, b, tolerance, what,
+                        names=VECTORS + ["rotations", "pseudo_acceleration"]):
     with h5py.File(a, "r") as fa, h5py.File(b, "r") as fb:
         worst = 0.0
-        for name in VECTORS + ["rotations", "pseudo_acceleration"]:
+        for name in names:
             if name not in fa:
                 continue
             x, y = fa[name][()], fb[name][()]
@@ -152,6 +155,34 @@ def resume_and_compare(args, reference, directory, checkpoint, final, timing,
     compare_histories(reference, directory, name)
 
 
+def check_interactive(args, reference, final, timing):
+    """Run E driven by --interactive to the given targets and on to the
+    end: the integrator carries its state across targets, so E ends in
+    the uninterrupted run's state (to round-off: the steps before each
+    target are clipped to it)."""
+    directory = os.path.join(args.output, "E")
+    command = [args.coshell, args.prm, "--output", directory, "--interactive"]
+    for assignment in args.set + timing:
+        command += ["--set", assignment]
+    targets = "".join(f"{t}\n" for t in args.interactive_targets + [args.end])
+    result = subprocess.run(command, input=targets + "quit\n",
+                            capture_output=True, text=True)
+    check(result.returncode == 0, f"interactive run E to {targets.split()}")
+    if result.returncode != 0:
+        return
+    # The steps before each target are clipped to it: their sizes differ
+    # from the straight run's by the round-off of t (1e-17 s), which the
+    # configuration keeps at that level and the rates see divided by dt.
+    compare_checkpoints(os.path.join(reference, final),
+                        os.path.join(directory, final), args.tolerance,
+                        "E driven interactively, configuration",
+                        ["values", "rotations"])
+    compare_checkpoints(os.path.join(reference, final),
+                        os.path.join(directory, final), 1e-9,
+                        "E driven interactively, rates",
+                        ["velocity", "acceleration", "pseudo_acceleration"])
+
+
 def check_bad_files(args, good):
     """A foreign HDF5 file and a checkpoint missing a dataset are refused
     with a message naming the file and what is missing."""
@@ -185,6 +216,8 @@ def main():
                         help="the duration to set to --end (a staged "
                         "scene: 'Stage k/Duration')")
     parser.add_argument("--tolerance", type=float, default=1e-12)
+    parser.add_argument("--interactive-targets", type=float, nargs="*",
+                        default=[])
     args = parser.parse_args()
     shutil.rmtree(args.output, ignore_errors=True)
     a, b, c = (os.path.join(args.output, x) for x in ("A", "B", "C"))
@@ -213,6 +246,8 @@ def main():
           "SIGINT: no summary.json, time_history.csv still .partial")
     if named:
         resume_and_compare(args, a, c, named.group(1), final, timing, "D")
+    if args.interactive_targets:
+        check_interactive(args, a, final, timing)
     check_bad_files(args, written[len(written) // 2 - 1])
     print(f"{len(failures)} failed")
     sys.exit(1 if failures else 0)
