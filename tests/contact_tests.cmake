@@ -220,3 +220,18 @@ coshell_rollup_test(contact.self.rollup.edge_edge
   --set "Contact/Edge-edge pairs=true")
 coshell_bad_input_test(contact_shell_starts_in_self_contact "the shell starts in contact with itself .Contact/Self contact.: shell vertex"
   ${COSHELL_PRM}/contact/plate_on_plate.prm --set "Mesh/Gmsh parameters=upper_height = 0.05")
+
+# Checkpoint and restart with contact (friction mu = 0.1): the barrier's
+# stiffness, the plunger lagging behind its motion, the works of the energy
+# bookkeeping and friction's lagged normal forces are in the checkpoint,
+# so a run resumed from the middle one, or after SIGINT, ends in the
+# uninterrupted run's state to 1e-12 (measured: bit for bit), with the same
+# time_history.csv and contact_forces.csv rows.
+add_test(NAME restart.funnel_friction
+  COMMAND ${COSHELL_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_restart.py
+          --coshell $<TARGET_FILE:coshell> --prm ${COSHELL_PRM}/${funnel}
+          --output ${CMAKE_CURRENT_BINARY_DIR}/output/restart.funnel_friction
+          --set "Output/Write VTU=false"
+          --set "Contact/Obstacle 1/Friction coefficient=0.1"
+          --end 0.4 --interval 0.1 --tolerance 1e-12)
+set_tests_properties(restart.funnel_friction PROPERTIES LABELS contact)

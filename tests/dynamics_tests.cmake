@@ -267,10 +267,5 @@ coshell_bad_input_test(restart_other_mesh "it holds 870 DoFs and 145 vertex rota
 coshell_bad_input_test(restart_into_static_scene "not a dynamic stage of this scene"
   ${COSHELL_PRM}/${free_flying} --restart ${checkpoint}
   --set "Analysis/Type=nonlinear static")
-coshell_bad_input_test(restart_with_contact "restarts do not carry the contact state"
-  ${COSHELL_PRM}/contact/plate_on_plane.prm --restart ${checkpoint}
-  --set "Analysis/Type=dynamic")
-coshell_bad_input_test(checkpoint_with_contact "Output/Checkpoint interval: checkpoints do not carry the contact"
-  ${COSHELL_PRM}/contact/plate_on_plane.prm --set "Output/Checkpoint interval=0.1")
 set_tests_properties(bad_input.restart_other_mesh bad_input.restart_into_static_scene
-  bad_input.restart_with_contact PROPERTIES FIXTURES_REQUIRED free_flying_checkpoint)
+  PROPERTIES FIXTURES_REQUIRED free_flying_checkpoint)

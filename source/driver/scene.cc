@@ -156,7 +156,7 @@ namespace coshell::driver
         "multiple of this, in s of simulated time (0: never). "
         "`coshell scene.prm --restart FILE` resumes from one. SIGINT and "
         "SIGTERM write one at the end of the current step and stop with "
-        "status 3. Not with Contact (its state is not stored yet).");
+        "status 3.");
     prm.leave_subsection();
     solvers::ThreadSettings::declare_parameters(prm);
   }
@@ -201,11 +201,6 @@ namespace coshell::driver
     prm.enter_subsection("Output");
     checkpoint_interval_ = prm.get_double("Checkpoint interval");
     prm.leave_subsection();
-    if (checkpoint_interval_ > 0 && contact_.enabled())
-      throw std::invalid_argument(
-          "Output/Checkpoint interval: checkpoints do not carry the contact "
-          "state yet (barrier stiffness, lagging obstacles, friction); set "
-          "it to 0 or Contact/Method = none");
     solvers::ThreadSettings().parse_parameters(prm);
   }
 

@@ -20,7 +20,8 @@ namespace coshell::driver
   {
     /// The CSV files a staged run writes, in the order of csv_rows.
     const std::vector<std::string> csv_files = {
-        "load_displacement.csv", "newton_history.csv", "time_history.csv"};
+        "load_displacement.csv", "newton_history.csv", "time_history.csv",
+        "contact_forces.csv"};
 
     std::string checkpoint_name(unsigned int step)
     {
@@ -48,11 +49,6 @@ namespace coshell::driver
                                   std::to_string(checkpoint.stage) +
                                   ", which is not a dynamic stage "
                                   "of this scene (another scene file?)");
-    if (contact_.enabled())
-      throw std::invalid_argument(
-          where + "restarts do not carry the contact state yet (barrier "
-                  "stiffness, lagging obstacles, friction); run without "
-                  "Contact or from the start");
     if (mesh_.refinement_levels.size() > 1)
       throw std::invalid_argument(where + "a refinement study cannot restart");
     if (checkpoint.body_frame_translations != time_integration_.se3())
@@ -101,9 +97,13 @@ namespace coshell::driver
     out.external_work     = c.external_work;
     out.dissipated_energy = c.dissipated_energy;
     carry_                = {c.pseudo_acceleration, c.step_size};
-    io::CsvFile *files[]  = {&out.curve, &out.history,
-                            out.time_history ? &*out.time_history : nullptr};
-    bool         carried  = true;
+    if (out.contact)
+      restore_contact(c, state, out);
+    io::CsvFile *files[] = {&out.curve, &out.history,
+                            out.time_history ? &*out.time_history : nullptr,
+                            out.contact_forces ? &*out.contact_forces
+                                               : nullptr};
+    bool         carried = true;
     for (unsigned int k = 0; k < earlier.size(); ++k)
       if (files[k] && !earlier[k].empty())
         carried = files[k]->resume(earlier[k]) && carried;
@@ -139,15 +139,6 @@ namespace coshell::driver
         time >= next_checkpoint_time_ - 1e-9 * checkpoint_interval_;
     if (!due && signal == 0)
       return;
-    if (contact_.enabled())
-    {
-      if (signal != 0)
-        throw Interrupted("stopped by signal " + std::to_string(signal) +
-                          " at t = " + std::to_string(time) +
-                          " s; no checkpoint (restarts do not carry the "
-                          "contact state yet)");
-      return;
-    }
     io::Checkpoint c;
     c.prm_file                = prm_file_;
     c.stage                   = stage.number;
@@ -167,9 +158,18 @@ namespace coshell::driver
     c.generalized_force       = out.generalized_force;
     c.damping_force           = out.damping_force;
     c.csv_rows                = {out.curve.rows(), out.history.rows(),
-                  out.time_history ? out.time_history->rows() : 0u};
-    c.pvd_entries             = output_.series_size(directory);
-    const std::string file    = directory + "/" + checkpoint_name(out.step);
+                  out.time_history ? out.time_history->rows() : 0u,
+                  out.contact_forces ? out.contact_forces->rows() : 0u};
+    if (out.contact)
+    {
+      c.arrays                   = out.contact->checkpoint_arrays();
+      c.arrays["output_contact"] = {out.contact_work, out.smallest_gap,
+                                    out.largest_penetration};
+      c.arrays["output_contact_force"].assign(out.contact_force.begin(),
+                                              out.contact_force.end());
+    }
+    c.pvd_entries          = output_.series_size(directory);
+    const std::string file = directory + "/" + checkpoint_name(out.step);
     io::write_checkpoint(c, file);
     while (checkpoint_interval_ > 0 &&
            next_checkpoint_time_ <= time + 1e-9 * checkpoint_interval_)
@@ -181,6 +181,36 @@ namespace coshell::driver
                       " at t = " + std::to_string(time) +
                       " s; checkpoint written to " + file +
                       "; resume with --restart " + file);
+  }
+
+  void Scene::restore_contact(const io::Checkpoint    &c,
+                              const model::ShellState &state,
+                              StagedOutput            &out) const
+  {
+    try
+    {
+      out.contact->restore_checkpoint_arrays(c.arrays, state, c.time);
+      const auto &totals = c.arrays.at("output_contact");
+      const auto &force  = c.arrays.at("output_contact_force");
+      if (totals.size() != 3 || force.size() != state.values().size())
+        throw std::out_of_range("");
+      out.contact_work        = totals[0];
+      out.smallest_gap        = totals[1];
+      out.largest_penetration = totals[2];
+      out.contact_force.reinit(force.size());
+      std::copy(force.begin(), force.end(), out.contact_force.begin());
+    }
+    catch (const std::invalid_argument &error)
+    {
+      throw std::invalid_argument("restart file '" + restart_file_ +
+                                  "': " + error.what());
+    }
+    catch (const std::out_of_range &)
+    {
+      throw std::invalid_argument("restart file '" + restart_file_ +
+                                  "': it has no contact state (written by a "
+                                  "scene without contact?)");
+    }
   }
 
   void Scene::stop_if_interrupted_in_static_stage()

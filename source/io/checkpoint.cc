@@ -4,6 +4,7 @@
 #include <deal.II/lac/full_matrix.h>
 
 #include <filesystem>
+#include <sstream>
 #include <stdexcept>
 
 namespace coshell::io
@@ -67,6 +68,42 @@ namespace coshell::io
     }
   } // namespace
 
+  namespace
+  {
+    /// Attribute "arrays" lists "name:size" of each; empty ones have no
+    /// dataset.
+    void write_arrays(HDF5::File                                       &file,
+                      const std::map<std::string, std::vector<double>> &arrays)
+    {
+      std::string index;
+      for (const auto &[name, values] : arrays)
+      {
+        index += (index.empty() ? "" : ",") + name + ":" +
+                 std::to_string(values.size());
+        if (!values.empty())
+          file.create_dataset<double>(name, {values.size()}).write(values);
+      }
+      file.set_attribute("arrays", index);
+    }
+
+    std::map<std::string, std::vector<double>>
+    read_arrays(const HDF5::File &file)
+    {
+      std::map<std::string, std::vector<double>> arrays;
+      std::istringstream index(file.get_attribute<std::string>("arrays"));
+      std::string        entry;
+      while (std::getline(index, entry, ','))
+      {
+        const auto        colon = entry.rfind(':');
+        const std::string name  = entry.substr(0, colon);
+        arrays[name]            = {};
+        if (std::stoul(entry.substr(colon + 1)) > 0)
+          arrays[name] = file.open_dataset(name).read<std::vector<double>>();
+      }
+      return arrays;
+    }
+  } // namespace
+
   void write_checkpoint(const Checkpoint &checkpoint, const std::string &path)
   {
     const std::string partial = path + ".partial";
@@ -93,6 +130,7 @@ namespace coshell::io
       write_vector(file, "generalized_force", checkpoint.generalized_force);
       write_vector(file, "damping_force", checkpoint.damping_force);
       write_rotations(file, checkpoint.rotations);
+      write_arrays(file, checkpoint.arrays);
       file.set_attribute("has_csv_rows", checkpoint.csv_rows.empty() ? 0u : 1u);
       if (!checkpoint.csv_rows.empty())
         file.create_dataset<unsigned int>("csv_rows",
@@ -132,6 +170,7 @@ namespace coshell::io
       c.generalized_force   = read_vector(file, "generalized_force", n);
       c.damping_force       = read_vector(file, "damping_force", n);
       c.rotations           = read_rotations(file);
+      c.arrays              = read_arrays(file);
       if (has_dataset(file, "csv_rows"))
         c.csv_rows =
             file.open_dataset("csv_rows").read<std::vector<unsigned int>>();
@@ -177,7 +216,8 @@ namespace coshell::io
             "step_size", "converged_force_scale", "external_work",
             "dissipated_energy", "body_frame_translations", "has_values",
             "has_velocity", "has_acceleration", "has_pseudo_acceleration",
-            "has_generalized_force", "has_damping_force", "has_csv_rows"})
+            "has_generalized_force", "has_damping_force", "has_csv_rows",
+            "arrays"})
         if (H5Aexists(file, name) <= 0)
           note(std::string("attribute '") + name + "'");
       for (const char *name :

@@ -107,21 +107,24 @@ def compare_checkpoints(a, b, tolerance, what,
           f"relative difference {worst:.2e} (tolerance {tolerance:g})")
 
 
-def rows(directory):
-    with open(os.path.join(directory, "time_history.csv")) as f:
+def rows(directory, name):
+    with open(os.path.join(directory, name)) as f:
         return list(csv.reader(f))
 
 
 def compare_histories(a, b, what):
-    ra, rb = rows(a), rows(b)
-    worst = 0.0
-    for x, y in zip(ra[1:], rb[1:]):
-        for u, v in zip(x, y):
-            u, v = float(u), float(v)
-            worst = max(worst, abs(u - v) / max(abs(u), 1e-6))
-    check(len(ra) == len(rb) and ra[0] == rb[0] and worst < 1e-9,
-          f"{what}: time_history.csv has the uninterrupted run's {len(ra) - 1} "
-          f"rows (largest difference {worst:.1e} of a value)")
+    for name in ("time_history.csv", "contact_forces.csv"):
+        if not os.path.exists(os.path.join(a, name)):
+            continue
+        ra, rb = rows(a, name), rows(b, name)
+        worst = 0.0
+        for x, y in zip(ra[1:], rb[1:]):
+            for u, v in zip(x, y):
+                u, v = float(u), float(v)
+                worst = max(worst, abs(u - v) / max(abs(u), 1e-6))
+        check(len(ra) == len(rb) and ra[0] == rb[0] and worst < 1e-9,
+              f"{what}: {name} has the uninterrupted run's {len(ra) - 1} "
+              f"rows (largest difference {worst:.1e} of a value)")
 
 
 def interrupt_half_way(args, directory, steps, timing):

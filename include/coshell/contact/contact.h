@@ -11,6 +11,7 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/numerics/rtree.h>
 
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -102,6 +103,19 @@ namespace coshell::contact
     /// obstacles' work is brought up to date.
     void save();
     void restore();
+
+    /// Named arrays of the state a restart needs, as save() will leave it
+    /// after the current, converged step (obstacle positions, which may lag
+    /// behind their motion, the barrier stiffness, the works and forces of
+    /// the energy bookkeeping, friction's lagged normal forces); and the
+    /// way back from them at 'time' with the shell in 'state'
+    /// (contact_checkpoint.cc). Throws std::invalid_argument on arrays of
+    /// another scene.
+    std::map<std::string, std::vector<double>> checkpoint_arrays() const;
+    void                                       restore_checkpoint_arrays(
+                                              const std::map<std::string, std::vector<double>> &arrays,
+                                              const model::ShellState                          &state,
+                                              double                                            time);
     /// Line search: the obstacles' positions before a trial evaluation,
     /// put back after it (a trial advances them against a shell shape
     /// that is then undone, which could leave them inside the shell).

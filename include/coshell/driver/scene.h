@@ -163,6 +163,9 @@ namespace coshell::driver
                                              double                     time,
                                              const std::string         &directory,
                                              std::ostream              &log);
+    void                     restore_contact(const io::Checkpoint    &checkpoint,
+                                             const model::ShellState &state,
+                                             StagedOutput            &out) const;
     static void              stop_if_interrupted_in_static_stage();
     /// Whether stage 'number' is skipped or resumed by the restart.
     bool skipped_by_restart(unsigned int stage_number) const;

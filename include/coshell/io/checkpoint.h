@@ -3,6 +3,7 @@
 #include <deal.II/base/tensor.h>
 #include <deal.II/lac/vector.h>
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,8 @@ namespace coshell::io
     /// this step: a restart keeps that much of the earlier run's files.
     std::vector<unsigned int> csv_rows;
     unsigned int              pvd_entries = 0;
+    /// Further state by name (the contact's), written as datasets.
+    std::map<std::string, std::vector<double>> arrays;
     /// The scene file of the run, for the record.
     std::string prm_file;
   };
