@@ -105,10 +105,16 @@ coshell_iol_test(iol.injection.fold check_injection.py injection.prm
                  --set "Stage 3/Analysis type=none"
                  --fold-only 3.7
                  --figures ${CMAKE_CURRENT_BINARY_DIR}/output/iol.injection.fold/png)
-# The whole injection is not a ctest yet: on the coarse lens it ran
-# through once (tests/scripts/check_injection.py passed every check but
-# the energy, whose bookkeeping changed after that run; doc/validation.md)
-# and stalled twice where the lens leaves the nozzle (t = 5.0 s: Newton's
-# residual stays at 0.2-1 while the step falls below 1e-6 s). Run it with
-#   check_injection.py --coshell build/coshell --prm prm/iol/injection.prm
-#     --output out --set "${coarse_lens}" --figures out/png
+# The whole injection on the coarse lens, labelled long (10 min on 2
+# threads): fold, push, exit, deployment. It passed twice on 2 threads
+# (identical runs: 1039 steps, smallest gap 4.328e-5 mm, optic 2.748 mm in
+# the 3.5 mm nozzle, trailing haptic out to x = 16.81 mm, optic shape
+# 0.0994 % off after a rigid fit, energy remainder 0.825 % of the work;
+# 2026-11-24, commit 1128d6e). In the session before, two runs of the
+# then scene stalled where the lens leaves the nozzle (t = 5.0 s; one with
+# the bag at x = 19 mm); the step is cut to 7 ms there still. Whether the
+# exit is robust (other thread counts, finer lenses) is not known yet.
+coshell_iol_test(iol.injection check_injection.py injection.prm
+                 --set ${coarse_lens}
+                 --figures ${CMAKE_CURRENT_BINARY_DIR}/output/iol.injection/png)
+set_tests_properties(iol.injection PROPERTIES LABELS "iol;long")
