@@ -90,13 +90,15 @@ namespace coshell::model
     step_displacement(increment);
     if (!body_frame_translations_)
       return;
-    // The SE(3) logarithm: q_u = V(psi)^-1 R_n^T (x - x_n).
+    // The SE(3) logarithm: q_u = V(psi)^-1 R_n^T (x - x_n), psi already in
+    // the rotation slots (no second logarithm).
     for (unsigned int v = 0; v < rotations_.size(); ++v)
       if (model_->vertex_is_used(v))
       {
         const VertexDofs  &dofs = model_->vertex_dofs(v);
         const Tensor<1, 3> q_u =
-            step_translation_jacobian(v) * block(increment, dofs, ux);
+            element::so3_left_jacobian_inverse(block(increment, dofs, rx)) *
+            (transpose(saved_rotations_[v]) * block(increment, dofs, ux));
         for (unsigned int d = 0; d < 3; ++d)
           increment[dofs[ux + d]] = q_u[d];
       }

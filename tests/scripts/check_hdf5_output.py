@@ -20,21 +20,20 @@ parser:
 import argparse
 import json
 import os
-import shutil
-import subprocess
 import sys
 import xml.etree.ElementTree as ElementTree
 
 import h5py
 import numpy as np
 
-failures = []
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from scene_runner import Checks, add_scene_arguments, exit_with, run_scene  # noqa: E402
+
+checks = Checks()
 
 
 def check(condition, message):
-    print(("ok   " if condition else "FAIL ") + message)
-    if not condition:
-        failures.append(message)
+    checks(message, condition)
 
 
 def data_items(grid):
@@ -69,20 +68,11 @@ def check_file(directory, grid):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__)
-    parser.add_argument("--coshell", required=True)
-    parser.add_argument("--prm", required=True)
-    parser.add_argument("--output", required=True)
-    parser.add_argument("--set", action="append", default=[])
+    add_scene_arguments(parser)
     parser.add_argument("--qoi", nargs=4)
     args = parser.parse_args()
-    shutil.rmtree(args.output, ignore_errors=True)
-    command = [args.coshell, args.prm, "--output", args.output,
-               "--set", "Output/Format=hdf5"]
-    for assignment in args.set:
-        command += ["--set", assignment]
-    result = subprocess.run(command, capture_output=True, text=True)
-    if result.returncode != 0:
-        sys.exit("FAIL: coshell failed\n" + result.stdout[-2000:] + result.stderr)
+    run_scene(args.coshell, args.prm, args.output,
+              ["Output/Format=hdf5"] + args.set)
 
     root = ElementTree.parse(os.path.join(args.output, "solution.xdmf"))
     grids = [g for g in root.iter("Grid") if g.get("GridType") == "Uniform"]
@@ -104,8 +94,7 @@ def main():
         check(abs(abs(measured) - abs(expected)) <= 2e-7 * abs(expected),
               f"{name}: {measured:.12g} in the HDF5 file, {expected:.12g} in "
               f"summary.json")
-    print(f"{len(failures)} failed")
-    sys.exit(1 if failures else 0)
+    exit_with(checks.failures)
 
 
 if __name__ == "__main__":

@@ -32,19 +32,20 @@ import time
 import h5py
 import numpy as np
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from scene_runner import Checks, add_scene_arguments, exit_with  # noqa: E402
+
 VECTORS = ["values", "velocity", "acceleration", "generalized_force",
            "damping_force"]
 ATTRIBUTES = ["format", "stage", "step", "time", "step_size",
               "converged_force_scale", "external_work", "dissipated_energy",
               "pvd_entries", "last_written", "prm_file"]
 
-failures = []
+checks = Checks()
 
 
 def check(condition, message):
-    print(("ok   " if condition else "FAIL ") + message)
-    if not condition:
-        failures.append(message)
+    checks(message, condition)
 
 
 def run(args, directory, extra, **popen):
@@ -209,10 +210,7 @@ def check_bad_files(args, good):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__)
-    parser.add_argument("--coshell", required=True)
-    parser.add_argument("--prm", required=True)
-    parser.add_argument("--output", required=True)
-    parser.add_argument("--set", action="append", default=[])
+    add_scene_arguments(parser)
     parser.add_argument("--end", type=float, required=True)
     parser.add_argument("--interval", type=float, required=True)
     parser.add_argument("--end-parameter", default="Time integration/End time",
@@ -252,8 +250,7 @@ def main():
     if args.interactive_targets:
         check_interactive(args, a, final, timing)
     check_bad_files(args, written[len(written) // 2 - 1])
-    print(f"{len(failures)} failed")
-    sys.exit(1 if failures else 0)
+    exit_with(checks.failures)
 
 
 if __name__ == "__main__":
