@@ -261,7 +261,7 @@ coshell_bad_input_test(restart_missing_file "restart file '.*nowhere.h5': no suc
   ${COSHELL_PRM}/${free_flying} --restart nowhere.h5)
 coshell_bad_input_test(restart_not_hdf5 "free_flying_plate.prm': not an HDF5 file"
   ${COSHELL_PRM}/${free_flying} --restart ${COSHELL_PRM}/${free_flying})
-coshell_bad_input_test(restart_other_mesh "it holds 870 DoFs and 145 vertex rotations, the scene's mesh has 3270 and 545"
+coshell_bad_input_test(restart_other_mesh "checkpoint-000100.h5': it holds 145 vertices, the scene's mesh has 545"
   ${COSHELL_PRM}/${free_flying} --restart ${checkpoint}
   --set "Mesh/Subdivisions x=16" --set "Mesh/Subdivisions y=16")
 coshell_bad_input_test(restart_into_static_scene "not a dynamic stage of this scene"

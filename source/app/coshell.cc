@@ -7,6 +7,7 @@
 
 #include <cstring>
 #include <iostream>
+#include <streambuf>
 #include <string>
 #include <vector>
 
@@ -80,11 +81,27 @@ namespace
   }
 } // namespace
 
+namespace
+{
+  /// A stream buffer that drops what is written to it.
+  class DiscardingBuffer : public std::streambuf
+  {
+  protected:
+    int overflow(int c) override
+    {
+      return c;
+    }
+  };
+} // namespace
+
 int main(int argc, char **argv)
 {
   // Serial runs start MPI lazily (see ensure_mpi_initialized).
   if (coshell::solvers::launched_by_mpi_launcher())
     coshell::solvers::ensure_mpi_initialized();
+  // Under mpirun every rank runs the scene; rank 0 alone logs and writes.
+  if (!coshell::solvers::writes_output())
+    std::cout.rdbuf(new DiscardingBuffer); // lives as long as std::cout
   CommandLine line;
   try
   {
@@ -123,6 +140,9 @@ int main(int argc, char **argv)
     if (line.interactive && !line.restart_file.empty())
       throw std::invalid_argument("--restart and --interactive do not go "
                                   "together");
+    if (line.interactive && coshell::solvers::distributed())
+      throw std::invalid_argument("--interactive runs on one rank; start it "
+                                  "without mpirun");
     if (line.interactive)
       scene.drive_interactively(std::cin, std::cout);
     if (!line.restart_file.empty())
@@ -139,6 +159,8 @@ int main(int argc, char **argv)
   catch (const std::exception &error)
   {
     std::cerr << "coshell: error: " << error.what() << "\n";
+    // An error on some ranks only would leave the others waiting.
+    coshell::solvers::abort_other_ranks(1);
     return 1;
   }
   return 0;

@@ -43,7 +43,7 @@ namespace coshell::contact
       auto &positions          = arrays["contact_obstacle_positions_" + number];
       for (const Point<3> &p : current_[o])
         positions.insert(positions.end(), {p[0], p[1], p[2]});
-      const Vector<double> &force = shell_force_[o];
+      const Vector<double> force = model_.to_vertex_order(shell_force_[o]);
       arrays["contact_shell_force_" + number].assign(force.begin(),
                                                      force.end());
     }
@@ -78,9 +78,9 @@ namespace coshell::contact
       for (unsigned int i = 0; i < current_[o].size(); ++i)
         current_[o][i] = Point<3>(positions[3 * i], positions[3 * i + 1],
                                   positions[3 * i + 2]);
-      const auto &force = array(arrays, "contact_shell_force_" + number,
-                                shell_force_[o].size());
-      std::copy(force.begin(), force.end(), shell_force_[o].begin());
+      const auto &force = array(arrays, "contact_shell_force_" + number, 0);
+      shell_force_[o] =
+          model_.from_vertex_order(Vector<double>(force.begin(), force.end()));
       rebuild_tree(o);
     }
     saved_shell_force_ = shell_force_;

@@ -1,4 +1,5 @@
 #include <coshell/contact/contact.h>
+#include <coshell/solvers/parallel_environment.h>
 
 #include <cmath>
 #include <fstream>
@@ -28,6 +29,8 @@ namespace coshell::contact
 
   void Contact::write_obstacles_vtu(const std::string &file) const
   {
+    if (!solvers::writes_output())
+      return;
     std::ofstream out(file);
     if (!out)
       throw std::runtime_error("cannot write '" + file + "'");

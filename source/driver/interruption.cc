@@ -1,4 +1,5 @@
 #include <coshell/driver/interruption.h>
+#include <coshell/solvers/parallel_environment.h>
 
 #include <csignal>
 
@@ -22,6 +23,8 @@ namespace coshell::driver
 
   int interrupt_signal()
   {
-    return received_signal;
+    // mpirun forwards the signal to every rank, but not at the same
+    // instant: the ranks agree, so that all stop at the same step.
+    return solvers::largest_over_ranks(received_signal);
   }
 } // namespace coshell::driver

@@ -216,7 +216,10 @@ namespace coshell::driver
     const auto    start = std::chrono::steady_clock::now();
     mesh::Surface surface;
     mesh_.build(surface, level);
+    if (solvers::distributed())
+      mesh::partition(surface, solvers::n_ranks());
     model::ShellModel model(surface, element_, mesh_.normal_reference);
+    linear_solver_.set_row_partition(model.locally_owned_dofs());
     require_mass(model.element_parameters().material.density);
     const double setup = seconds_since(start);
     log << "level " << level << ": " << surface.n_active_cells() << " cells, "
@@ -404,6 +407,9 @@ namespace coshell::driver
                                      const std::string       &directory,
                                      std::ostream            &log)
   {
+    if (solvers::distributed())
+      throw std::invalid_argument("Analysis/Type = modes runs on one rank; "
+                                  "start it without mpirun");
     io::LevelResult                 result;
     auto                            phase = std::chrono::steady_clock::now();
     const AffineConstraints<double> constraints = support_constraints(model);
@@ -606,8 +612,9 @@ namespace coshell::driver
       out.contact_force = problem.force(model::ForceKind::contact);
     if (resuming)
     {
-      out.generalized_force = restart_->generalized_force;
-      out.damping_force     = restart_->damping_force;
+      out.generalized_force =
+          model.from_vertex_order(restart_->generalized_force);
+      out.damping_force = model.from_vertex_order(restart_->damping_force);
     }
     else if (std::isnan(result.initial_total_energy))
       result.initial_total_energy = inertia->measures(state).kinetic_energy +
@@ -970,6 +977,7 @@ namespace coshell::driver
     summary["element"]       = element_.element_name();
     summary["linear_solver"] = linear_solver_.method();
     summary["threads"]       = solvers::ThreadSettings::n_threads();
+    summary["mpi_ranks"]     = solvers::n_ranks();
     if (study)
     {
       summary["levels"] = level_summaries;

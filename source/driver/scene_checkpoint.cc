@@ -5,6 +5,7 @@
 #include <coshell/driver/scene.h>
 #include <coshell/io/checkpoint.h>
 #include <coshell/io/csv_file.h>
+#include <coshell/solvers/parallel_environment.h>
 
 #include "staged_output.h"
 
@@ -40,9 +41,13 @@ namespace coshell::driver
 
   void Scene::restart_from(const std::string &file)
   {
-    io::Checkpoint    checkpoint = io::read_checkpoint(file);
-    const std::string where      = "restart file '" + file + "': ";
-    const auto       &list       = stages_.list();
+    // deal.II opens HDF5 files for writing, which locks them: the ranks
+    // read in turn.
+    io::Checkpoint checkpoint;
+    solvers::one_rank_at_a_time([&]
+                                { checkpoint = io::read_checkpoint(file); });
+    const std::string where = "restart file '" + file + "': ";
+    const auto       &list  = stages_.list();
     if (checkpoint.stage < 1 || checkpoint.stage > list.size() ||
         list[checkpoint.stage - 1].analysis != "dynamic")
       throw std::invalid_argument(where + "it was written in stage " +
@@ -82,10 +87,13 @@ namespace coshell::driver
                                  const std::string              &directory,
                                  std::ostream                   &log)
   {
-    const io::Checkpoint &c = *restart_;
+    const io::Checkpoint    &c     = *restart_;
+    const model::ShellModel &model = state.model();
     try
     {
-      state.load(c.values, c.rotations, c.velocity, c.acceleration);
+      state.load(model.from_vertex_order(c.values), c.rotations,
+                 model.from_vertex_order(c.velocity),
+                 model.from_vertex_order(c.acceleration));
     }
     catch (const std::invalid_argument &error)
     {
@@ -96,7 +104,7 @@ namespace coshell::driver
     out.last_written      = c.last_written;
     out.external_work     = c.external_work;
     out.dissipated_energy = c.dissipated_energy;
-    carry_                = {c.pseudo_acceleration, c.step_size};
+    carry_ = {model.from_vertex_order(c.pseudo_acceleration), c.step_size};
     if (out.contact)
       restore_contact(c, state, out);
     io::CsvFile *files[] = {&out.curve, &out.history,
@@ -139,24 +147,26 @@ namespace coshell::driver
         time >= next_checkpoint_time_ - 1e-9 * checkpoint_interval_;
     if (!due && signal == 0)
       return;
-    io::Checkpoint c;
-    c.prm_file                = prm_file_;
-    c.stage                   = stage.number;
-    c.step                    = out.step;
-    c.last_written            = out.last_written;
-    c.time                    = time;
-    c.step_size               = carry_.step_size;
-    c.pseudo_acceleration     = carry_.pseudo_acceleration;
-    c.converged_force_scale   = problem.converged_force_scale();
-    c.values                  = problem.state().values();
-    c.rotations               = problem.state().rotations();
-    c.velocity                = problem.state().velocity();
-    c.acceleration            = problem.state().acceleration();
+    // Vectors go by mesh vertex: the DoF numbering depends on the ranks.
+    const model::ShellModel &model = problem.model();
+    io::Checkpoint           c;
+    c.prm_file              = prm_file_;
+    c.stage                 = stage.number;
+    c.step                  = out.step;
+    c.last_written          = out.last_written;
+    c.time                  = time;
+    c.step_size             = carry_.step_size;
+    c.pseudo_acceleration   = model.to_vertex_order(carry_.pseudo_acceleration);
+    c.converged_force_scale = problem.converged_force_scale();
+    c.values                = model.to_vertex_order(problem.state().values());
+    c.rotations             = problem.state().rotations();
+    c.velocity              = model.to_vertex_order(problem.state().velocity());
+    c.acceleration = model.to_vertex_order(problem.state().acceleration());
     c.body_frame_translations = problem.state().body_frame_translations();
     c.external_work           = out.external_work;
     c.dissipated_energy       = out.dissipated_energy;
-    c.generalized_force       = out.generalized_force;
-    c.damping_force           = out.damping_force;
+    c.generalized_force       = model.to_vertex_order(out.generalized_force);
+    c.damping_force           = model.to_vertex_order(out.damping_force);
     c.csv_rows                = {out.curve.rows(), out.history.rows(),
                   out.time_history ? out.time_history->rows() : 0u,
                   out.contact_forces ? out.contact_forces->rows() : 0u};
@@ -165,8 +175,8 @@ namespace coshell::driver
       c.arrays                   = out.contact->checkpoint_arrays();
       c.arrays["output_contact"] = {out.contact_work, out.smallest_gap,
                                     out.largest_penetration};
-      c.arrays["output_contact_force"].assign(out.contact_force.begin(),
-                                              out.contact_force.end());
+      const auto force           = model.to_vertex_order(out.contact_force);
+      c.arrays["output_contact_force"].assign(force.begin(), force.end());
     }
     c.pvd_entries          = output_.series_size(directory);
     const std::string file = directory + "/" + checkpoint_name(out.step);
@@ -192,13 +202,13 @@ namespace coshell::driver
       out.contact->restore_checkpoint_arrays(c.arrays, state, c.time);
       const auto &totals = c.arrays.at("output_contact");
       const auto &force  = c.arrays.at("output_contact_force");
-      if (totals.size() != 3 || force.size() != state.values().size())
+      if (totals.size() != 3)
         throw std::out_of_range("");
       out.contact_work        = totals[0];
       out.smallest_gap        = totals[1];
       out.largest_penetration = totals[2];
-      out.contact_force.reinit(force.size());
-      std::copy(force.begin(), force.end(), out.contact_force.begin());
+      out.contact_force       = state.model().from_vertex_order(
+                dealii::Vector<double>(force.begin(), force.end()));
     }
     catch (const std::invalid_argument &error)
     {

@@ -1,4 +1,5 @@
 #include <coshell/io/checkpoint.h>
+#include <coshell/solvers/parallel_environment.h>
 
 #include <deal.II/base/hdf5.h>
 #include <deal.II/lac/full_matrix.h>
@@ -106,6 +107,9 @@ namespace coshell::io
 
   void write_checkpoint(const Checkpoint &checkpoint, const std::string &path)
   {
+    // Every rank holds the same state; rank 0 writes it.
+    if (!solvers::writes_output())
+      return;
     const std::string partial = path + ".partial";
     {
       HDF5::File file(partial, HDF5::File::FileAccessMode::create);

@@ -1,4 +1,5 @@
 #include <coshell/io/csv_file.h>
+#include <coshell/solvers/parallel_environment.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -19,13 +20,16 @@ namespace coshell::io
                    const std::vector<std::string> &columns)
       : path_(path)
   {
+    header_ = join(columns);
+    // Under mpirun rank 0 writes; the stream stays closed elsewhere.
+    if (!solvers::writes_output())
+      return;
     const auto directory = std::filesystem::path(path).parent_path();
     if (!directory.empty())
       std::filesystem::create_directories(directory);
     out_.open(path + ".partial");
     if (!out_)
       throw std::runtime_error("cannot write '" + path + ".partial'");
-    header_ = join(columns);
     out_ << header_ << '\n' << std::setprecision(12);
   }
 
@@ -72,6 +76,8 @@ namespace coshell::io
 
   void CsvFile::finish()
   {
+    if (!out_.is_open())
+      return;
     out_.close();
     std::filesystem::rename(path_ + ".partial", path_);
   }

@@ -1,4 +1,5 @@
 #include <coshell/io/json.h>
+#include <coshell/solvers/parallel_environment.h>
 
 #include <cmath>
 #include <cstdio>
@@ -99,6 +100,8 @@ namespace coshell::io
 
   void write_file_atomically(const std::string &path, const std::string &text)
   {
+    if (!solvers::writes_output())
+      return;
     const std::string temporary = path + ".partial";
     {
       std::ofstream out(temporary);

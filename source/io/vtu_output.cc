@@ -1,14 +1,17 @@
+#include <coshell/io/json.h>
 #include <coshell/io/vtu_output.h>
 #include <coshell/solvers/parallel_environment.h>
 
 #include <deal.II/fe/fe_simplex_p.h>
 #include <deal.II/fe/mapping_fe.h>
+#include <deal.II/grid/filtered_iterator.h>
 #include <deal.II/numerics/data_out.h>
 
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <sstream>
 
 namespace coshell::io
 {
@@ -25,8 +28,11 @@ namespace coshell::io
                       "(true/false): solution.vtu and solution.pvd, or with "
                       "Format = hdf5 solution.h5 and solution.xdmf.");
     prm.declare_entry(
-        "Format", "vtu", Patterns::Selection("vtu|hdf5"),
-        "vtu: one NAME.vtu per output and solution.pvd listing them; hdf5: "
+        "Format", "vtu", Patterns::Selection("vtu|pvtu|hdf5"),
+        "vtu: one NAME.vtu per output and solution.pvd listing them; pvtu: "
+        "under mpirun each rank writes the triangles it owns to "
+        "NAME.piece-RANK.vtu and rank 0 writes NAME.pvtu joining them "
+        "(one piece on one rank), listed in solution.pvd; hdf5: "
         "one NAME.h5 (mesh with duplicate vertices merged, and the fields) "
         "per output and solution.xdmf listing them with their times. "
         "ParaView opens both (the .xdmf with its Xdmf reader). Cell fields "
@@ -34,6 +40,13 @@ namespace coshell::io
         "vertices, taken from one of the triangles around each. Obstacles "
         "of contact scenes are VTU files either way, and a restart's "
         ".xdmf lists only its own steps (dimensionless choice).");
+    prm.declare_entry(
+        "Vertex table", "false", Patterns::Bool(),
+        "Selects whether each field output also writes NAME.vertices.csv: "
+        "per mesh vertex its reference position (length unit) and its six "
+        "unknowns (displacement in the length unit, rotation vector in "
+        "rad) with 17 significant digits. VTU and HDF5 fields are rounded "
+        "to single precision by deal.II; this table is not (true/false).");
     prm.declare_entry("Steps between outputs", "1", Patterns::Integer(0),
                       "Nonlinear runs: write every n-th converged load step "
                       "(0: only the last one); a step count "
@@ -47,6 +60,8 @@ namespace coshell::io
     directory             = prm.get("Directory");
     write_vtu_            = prm.get_bool("Write VTU");
     hdf5_                 = prm.get("Format") == "hdf5";
+    pvtu_                 = prm.get("Format") == "pvtu";
+    vertex_table_         = prm.get_bool("Vertex table");
     steps_between_output_ = prm.get_integer("Steps between outputs");
     prm.leave_subsection();
   }
@@ -77,35 +92,49 @@ namespace coshell::io
     }
   } // namespace
 
+  void VtuOutput::write_vertex_table(const model::ShellModel &model,
+                                     const Vector<double>    &solution,
+                                     const std::string       &path)
+  {
+    std::ostringstream table;
+    table << "vertex,x,y,z,ux,uy,uz,rx,ry,rz\n" << std::setprecision(17);
+    const auto &vertices = model.surface().get_vertices();
+    for (unsigned int v = 0; v < vertices.size(); ++v)
+    {
+      if (!model.vertex_is_used(v))
+        continue;
+      table << v;
+      for (unsigned int d = 0; d < 3; ++d)
+        table << ',' << vertices[v][d];
+      for (const auto dof : model.vertex_dofs(v))
+        table << ',' << solution[dof];
+      table << '\n';
+    }
+    std::filesystem::create_directories(
+        std::filesystem::path(path).parent_path());
+    write_file_atomically(path, table.str());
+  }
+
   bool VtuOutput::wants_step(unsigned int step) const
   {
     return write_vtu_ && steps_between_output_ > 0 &&
            step % steps_between_output_ == 0;
   }
 
-  std::string
-  VtuOutput::write(const model::ShellModel                     &model,
-                   const Vector<double>                        &solution,
-                   const std::vector<element::ShellResultants> &resultants,
-                   const std::string              &output_directory,
-                   const std::string              &name,
-                   double                          time,
-                   const std::vector<DofField>    &fields,
-                   const std::vector<std::string> &companions)
+  void
+  VtuOutput::add_fields(DataOut<2, 3>                               &data_out,
+                        const model::ShellModel                     &model,
+                        const Vector<double>                        &solution,
+                        const std::vector<element::ShellResultants> &resultants,
+                        const std::vector<DofField>                 &fields,
+                        std::vector<Vector<double>> &storage) const
   {
-    if (!write_vtu_)
-      return "";
     std::vector<std::string> names(3, "displacement");
     names.insert(names.end(), 3, "rotation");
-    const std::vector<DataComponentInterpretation::DataComponentInterpretation>
-        interpretation(
-            6, DataComponentInterpretation::component_is_part_of_vector);
-
-    DataOut<2, 3> data_out;
-    data_out.attach_dof_handler(model.dof_handler());
-    data_out.add_data_vector(solution, names, DataOut<2, 3>::type_dof_data,
-                             interpretation);
-
+    data_out.add_data_vector(
+        solution, names, DataOut<2, 3>::type_dof_data,
+        std::vector<DataComponentInterpretation::DataComponentInterpretation>(
+            6, DataComponentInterpretation::component_is_part_of_vector));
     for (const DofField &field : fields)
     {
       std::vector<DataComponentInterpretation::DataComponentInterpretation>
@@ -124,8 +153,7 @@ namespace coshell::io
       membrane.push_back(r.membrane_global);
       bending.push_back(r.bending_global);
     }
-    std::vector<Vector<double>> storage;
-    storage.reserve(13);
+    storage.reserve(14);
     add_tensor_fields(data_out, membrane, "N", storage);
     add_tensor_fields(data_out, bending, "M", storage);
     Vector<double> material(model.surface().n_active_cells());
@@ -135,27 +163,88 @@ namespace coshell::io
       material[cell->active_cell_index()]  = cell->material_id();
       thickness[cell->active_cell_index()] = model.material(cell).thickness;
     }
-    data_out.add_data_vector(material, "material_id",
+    storage.push_back(material);
+    data_out.add_data_vector(storage.back(), "material_id",
                              DataOut<2, 3>::type_cell_data);
-    data_out.add_data_vector(thickness, "thickness",
+    storage.push_back(thickness);
+    data_out.add_data_vector(storage.back(), "thickness",
                              DataOut<2, 3>::type_cell_data);
+  }
 
+  std::string
+  VtuOutput::write(const model::ShellModel                     &model,
+                   const Vector<double>                        &solution,
+                   const std::vector<element::ShellResultants> &resultants,
+                   const std::string              &output_directory,
+                   const std::string              &name,
+                   double                          time,
+                   const std::vector<DofField>    &fields,
+                   const std::vector<std::string> &companions)
+  {
+    if (!write_vtu_)
+      return "";
+    // With pvtu every rank writes the piece of its own cells.
+    if (!solvers::writes_output() && !pvtu_)
+      return record_series(output_directory, name, time, companions);
+    if (vertex_table_)
+      write_vertex_table(model, solution,
+                         output_directory + "/" + name + ".vertices.csv");
+    DataOut<2, 3> data_out;
+    data_out.attach_dof_handler(model.dof_handler());
+    std::vector<Vector<double>> storage;
+    add_fields(data_out, model, solution, resultants, fields, storage);
+    if (pvtu_)
+    {
+      const unsigned int rank = solvers::this_rank();
+      data_out.set_cell_selection(
+          FilteredIterator<Triangulation<2, 3>::cell_iterator>(
+              [rank](const Triangulation<2, 3>::cell_iterator &cell)
+              { return cell->is_active() && cell->subdomain_id() == rank; }));
+    }
     const MappingFE<2, 3> mapping(FE_SimplexP<2, 3>(1));
     data_out.build_patches(mapping);
     std::filesystem::create_directories(output_directory);
     if (hdf5_)
       return write_hdf5(data_out, output_directory, name, time);
-    const std::string vtu = name + ".vtu";
+    const std::string file =
+        pvtu_ ? write_pieces(data_out, output_directory, name) : name + ".vtu";
+    if (!pvtu_)
     {
-      std::ofstream out(output_directory + "/" + vtu);
+      std::ofstream out(output_directory + "/" + file);
       data_out.write_vtu(out);
     }
-    auto &series = series_[output_directory];
-    series.push_back({time, 0, vtu});
-    for (unsigned int k = 0; k < companions.size(); ++k)
-      series.push_back({time, k + 1, companions[k]});
-    const std::string pvd = output_directory + "/solution.pvd";
-    std::ofstream     out(pvd);
+    const std::string pvd =
+        record_series(output_directory, name, time, companions);
+    if (solvers::writes_output())
+      write_pvd(pvd, series_[output_directory]);
+    return pvd;
+  }
+
+  std::string VtuOutput::write_pieces(const DataOut<2, 3> &data_out,
+                                      const std::string   &directory,
+                                      const std::string   &name) const
+  {
+    const auto piece = [&](unsigned int rank)
+    { return name + ".piece-" + std::to_string(rank) + ".vtu"; };
+    {
+      std::ofstream out(directory + "/" + piece(solvers::this_rank()));
+      data_out.write_vtu(out);
+    }
+    if (solvers::writes_output())
+    {
+      std::vector<std::string> pieces;
+      for (unsigned int rank = 0; rank < solvers::n_ranks(); ++rank)
+        pieces.push_back(piece(rank));
+      std::ofstream out(directory + "/" + name + ".pvtu");
+      data_out.write_pvtu_record(out, pieces);
+    }
+    return name + ".pvtu";
+  }
+
+  void VtuOutput::write_pvd(const std::string        &pvd,
+                            const std::vector<Entry> &series)
+  {
+    std::ofstream out(pvd);
     out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" "
            "version=\"0.1\">\n<Collection>\n";
     for (const Entry &entry : series)
@@ -163,7 +252,6 @@ namespace coshell::io
           << "\" group=\"\" part=\"" << entry.part << "\" file=\"" << entry.file
           << "\"/>\n";
     out << "</Collection>\n</VTKFile>\n";
-    return pvd;
   }
 
   std::string VtuOutput::write_hdf5(const DataOut<2, 3> &data_out,
@@ -185,6 +273,21 @@ namespace coshell::io
     const std::string xdmf = output_directory + "/solution.xdmf";
     data_out.write_xdmf_file(series, xdmf, MPI_COMM_SELF);
     return xdmf;
+  }
+
+  std::string
+  VtuOutput::record_series(const std::string              &directory,
+                           const std::string              &name,
+                           double                          time,
+                           const std::vector<std::string> &companions)
+  {
+    if (hdf5_)
+      return directory + "/solution.xdmf";
+    auto &series = series_[directory];
+    series.push_back({time, 0, name + (pvtu_ ? ".pvtu" : ".vtu")});
+    for (unsigned int k = 0; k < companions.size(); ++k)
+      series.push_back({time, k + 1, companions[k]});
+    return directory + "/solution.pvd";
   }
 
   unsigned int VtuOutput::series_size(const std::string &directory) const

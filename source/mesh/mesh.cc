@@ -3,6 +3,7 @@
 
 #include <deal.II/base/utilities.h>
 #include <deal.II/grid/grid_in.h>
+#include <deal.II/grid/grid_tools.h>
 #include <deal.II/grid/tria_description.h>
 
 #include <algorithm>
@@ -229,6 +230,17 @@ namespace coshell::mesh
                                "parameters");
     else
       read_msh_file(surface, file);
+  }
+
+  void partition(Surface &surface, unsigned int n_parts)
+  {
+    if (surface.n_active_cells() < 2 * n_parts)
+      throw std::invalid_argument(
+          "the mesh has " + std::to_string(surface.n_active_cells()) +
+          " triangles, too few for " + std::to_string(n_parts) +
+          " MPI ranks (at least two per rank)");
+    GridTools::partition_triangulation(n_parts, surface,
+                                       SparsityTools::Partitioner::metis);
   }
 
   void check_cells(const Surface &surface)

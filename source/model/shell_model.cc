@@ -2,6 +2,7 @@
 #include <coshell/model/cell_loop.h>
 #include <coshell/model/shell_model.h>
 
+#include <deal.II/dofs/dof_renumbering.h>
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/fe_simplex_p.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
@@ -56,6 +57,7 @@ namespace coshell::model
           std::make_pair(i % dofs_per_vertex, i / dofs_per_vertex))
         throw std::logic_error("unexpected cell-local DoF order in FESystem");
     dof_handler_.distribute_dofs(fe_);
+    number_dofs_by_rank();
     number_vertex_dofs();
     assign_cell_materials();
   }
@@ -151,6 +153,26 @@ namespace coshell::model
     return range;
   }
 
+  void ShellModel::number_dofs_by_rank()
+  {
+    locally_owned_dofs_ = complete_index_set(dof_handler_.n_dofs());
+    if (!solvers::distributed())
+      return;
+    DoFRenumbering::subdomain_wise(dof_handler_);
+    const auto owned = DoFTools::locally_owned_dofs_per_subdomain(dof_handler_);
+    if (owned.size() != solvers::n_ranks())
+      throw std::logic_error("the mesh is not partitioned into one part per "
+                             "MPI rank");
+    locally_owned_dofs_ = owned[solvers::this_rank()];
+    if (!locally_owned_dofs_.is_contiguous())
+      throw std::logic_error("the DoFs of one rank are not contiguous");
+  }
+
+  const IndexSet &ShellModel::locally_owned_dofs() const
+  {
+    return locally_owned_dofs_;
+  }
+
   void ShellModel::number_vertex_dofs()
   {
     const global_dof_index invalid = numbers::invalid_dof_index;
@@ -191,6 +213,37 @@ namespace coshell::model
   bool ShellModel::vertex_is_used(unsigned int v) const
   {
     return vertex_dofs_.at(v)[0] != numbers::invalid_dof_index;
+  }
+
+  Vector<double> ShellModel::to_vertex_order(const Vector<double> &dofs) const
+  {
+    if (dofs.size() == 0)
+      return {};
+    Vector<double> by_vertex(dofs_per_vertex * vertex_dofs_.size());
+    for (unsigned int v = 0; v < vertex_dofs_.size(); ++v)
+      if (vertex_is_used(v))
+        for (unsigned int c = 0; c < dofs_per_vertex; ++c)
+          by_vertex[dofs_per_vertex * v + c] = dofs[vertex_dofs_[v][c]];
+    return by_vertex;
+  }
+
+  Vector<double>
+  ShellModel::from_vertex_order(const Vector<double> &by_vertex) const
+  {
+    if (by_vertex.size() == 0)
+      return {};
+    if (by_vertex.size() != dofs_per_vertex * vertex_dofs_.size())
+      throw std::invalid_argument(
+          "it holds " + std::to_string(by_vertex.size() / dofs_per_vertex) +
+          " vertices, the scene's mesh has " +
+          std::to_string(vertex_dofs_.size()) +
+          " (another mesh or refinement)");
+    Vector<double> dofs(n_dofs());
+    for (unsigned int v = 0; v < vertex_dofs_.size(); ++v)
+      if (vertex_is_used(v))
+        for (unsigned int c = 0; c < dofs_per_vertex; ++c)
+          dofs[vertex_dofs_[v][c]] = by_vertex[dofs_per_vertex * v + c];
+    return dofs;
   }
 
   unsigned int ShellModel::nearest_vertex(const Point<3> &point) const
@@ -269,7 +322,9 @@ namespace coshell::model
         {
           constraints.distribute_local_to_global(contribution.matrix,
                                                  contribution.dofs, matrix);
-        });
+        },
+        CellRange::owned);
+    solvers::sum_over_ranks(matrix);
   }
 
   element::ShellDisplacements

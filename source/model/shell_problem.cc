@@ -117,6 +117,11 @@ namespace coshell::model
     if (active.empty())
       return;
     const bool with_tangent = tangent != nullptr;
+    const bool split        = solvers::distributed();
+    auto      &kind_forces  = split ? rank_forces_ : forces_;
+    if (split)
+      for (auto &force : rank_forces_)
+        force.reinit(model_.n_dofs());
     for_each_cell(
         model_.dof_handler(),
         [&](const CellIterator &cell, CellContribution &copy)
@@ -141,7 +146,7 @@ namespace coshell::model
         {
           for (unsigned int k = 0; k < 3; ++k)
             for (unsigned int i = 0; i < element::shell_dofs; ++i)
-              forces_[k][copy.dofs[i]] += copy.forces_by_kind[k][i];
+              kind_forces[k][copy.dofs[i]] += copy.forces_by_kind[k][i];
           if (with_tangent && residual)
             constraints_.distribute_local_to_global(
                 copy.matrix, copy.vector, copy.dofs, *tangent, *residual);
@@ -151,7 +156,24 @@ namespace coshell::model
           else
             constraints_.distribute_local_to_global(copy.vector, copy.dofs,
                                                     *residual);
-        });
+        },
+        CellRange::owned);
+    if (split)
+      add_up_over_ranks(residual, tangent);
+  }
+
+  void ShellProblem::add_up_over_ranks(Vector<double>       *residual,
+                                       SparseMatrix<double> *tangent)
+  {
+    for (unsigned int k = 0; k < n_force_kinds; ++k)
+    {
+      solvers::sum_over_ranks(rank_forces_[k]);
+      forces_[k] += rank_forces_[k];
+    }
+    if (residual)
+      solvers::sum_over_ranks(*residual);
+    if (tangent)
+      solvers::sum_over_ranks(*tangent);
   }
 
   void ShellProblem::assemble_blocks(const EvaluationPoint &at,
@@ -340,12 +362,12 @@ namespace coshell::model
     direction.reinit(model_.n_dofs());
     Vector<double>        unit_load(model_.n_dofs());
     const EvaluationPoint at{state_, time_, 1.0, 0, 0};
-    for (const auto &contribution : contributions_)
-      if (contribution->kind() == ForceKind::external)
-        contribution->add_global(at, unit_load);
     assemble([](const Contribution &c)
              { return c.kind() == ForceKind::external; },
              at, &unit_load, nullptr);
+    for (const auto &contribution : contributions_)
+      if (contribution->kind() == ForceKind::external)
+        contribution->add_global(at, unit_load);
     homogeneous_.condense(unit_load);
     direction.equ(slope, unit_load);
   }

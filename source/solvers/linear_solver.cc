@@ -6,6 +6,7 @@
 #include <deal.II/base/index_set.h>
 #include <deal.II/lac/solver_cg.h>
 #include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/solver_gmres.h>
 #include <deal.II/lac/trilinos_precondition.h>
 #include <deal.II/lac/trilinos_solver.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
@@ -31,18 +32,31 @@ namespace coshell::solvers
     SolverControl                                      direct_control;
     std::unique_ptr<TrilinosWrappers::SolverDirect>    trilinos_direct;
     std::unique_ptr<TrilinosWrappers::PreconditionAMG> amg;
-    IndexSet                                           all_rows;
-    /// Near-null space, mode after mode (ML reads it during set-up).
-    std::vector<double> null_space_values;
+    /// The rows this rank holds (all rows on one rank), and the ranks.
+    IndexSet owned_rows;
+    MPI_Comm communicator = MPI_COMM_SELF;
+    /// Near-null space, mode after mode, full length (ML reads this rank's
+    /// rows of it during set-up).
+    std::vector<double> null_space_values, owned_null_space_values;
     unsigned int        n_null_space_modes = 0;
 
     TrilinosWrappers::MPI::Vector to_trilinos(const Vector<double> &v) const
     {
-      TrilinosWrappers::MPI::Vector result(all_rows, MPI_COMM_SELF);
-      for (unsigned int i = 0; i < v.size(); ++i)
-        result[i] = v[i];
+      TrilinosWrappers::MPI::Vector result(owned_rows, communicator);
+      for (const auto row : owned_rows)
+        result[row] = v[row];
       result.compress(VectorOperation::insert);
       return result;
+    }
+
+    /// Every rank gets the whole solution (the state is replicated).
+    void gather(const TrilinosWrappers::MPI::Vector &solution,
+                Vector<double>                      &x) const
+    {
+      x = 0;
+      for (const auto row : owned_rows)
+        x[row] = solution[row];
+      sum_over_ranks(x);
     }
   };
 
@@ -55,7 +69,8 @@ namespace coshell::solvers
     prm.enter_subsection("Linear solver");
     prm.declare_entry(
         "Method", "cholmod",
-        Patterns::Selection("cholmod|umfpack|amesos-klu|amesos-mumps|cg-amg"),
+        Patterns::Selection(
+            "cholmod|umfpack|amesos-klu|amesos-mumps|cg-amg|gmres-amg"),
         "Selects the linear solver. "
         "cholmod: SuiteSparse supernodal Cholesky, analysed "
         "once per sparsity pattern (symmetric positive "
@@ -68,7 +83,11 @@ namespace coshell::solvers
         "MUMPS (direct; MUMPS is the route to distributed solves); "
         "cg-amg: conjugate gradients with Trilinos ML algebraic "
         "multigrid (see the AMG entries; slow on thin shells "
-        "without the rigid-body near-null space).");
+        "without the rigid-body near-null space); "
+        "gmres-amg: GMRES with the same preconditioner, for "
+        "non-symmetric systems. Under mpirun only the Trilinos "
+        "methods run (distributed matrix, one block of rows per "
+        "rank); amesos-mumps is the distributed direct solver.");
     prm.declare_entry("Tolerance", "1e-10", Patterns::Double(0),
                       "Relative residual tolerance of iterative methods "
                       "(dimensionless: |r| <= tol |b|).");
@@ -159,10 +178,22 @@ namespace coshell::solvers
       return;
     }
     ensure_mpi_initialized();
-    backend_->all_rows = complete_index_set(matrix.m());
+    if (backend_->owned_rows.size() != matrix.m())
+    {
+      backend_->owned_rows   = complete_index_set(matrix.m());
+      backend_->communicator = MPI_COMM_SELF;
+    }
+    // The old solver still points to the old matrix (Amesos_Mumps reads
+    // its communicator when destroyed): release it first.
+    backend_->trilinos_direct.reset();
+    backend_->amg.reset();
     backend_->trilinos_matrix =
         std::make_unique<TrilinosWrappers::SparseMatrix>();
-    backend_->trilinos_matrix->reinit(matrix);
+    // Drop nothing: mass terms in t/mm^3 are far below Trilinos' default
+    // drop tolerance of 1e-13.
+    backend_->trilinos_matrix->reinit(backend_->owned_rows,
+                                      backend_->owned_rows, matrix,
+                                      backend_->communicator, 0.0);
     if (is_amesos())
     {
       backend_->trilinos_direct =
@@ -195,7 +226,15 @@ namespace coshell::solvers
       parameters.set("null space: type", "pre-computed");
       parameters.set("null space: dimension",
                      static_cast<int>(backend_->n_null_space_modes));
-      parameters.set("null space: vectors", backend_->null_space_values.data());
+      // ML reads the rows of this rank, mode after mode.
+      auto      &owned = backend_->owned_null_space_values;
+      const auto n =
+          backend_->null_space_values.size() / backend_->n_null_space_modes;
+      owned.clear();
+      for (unsigned int mode = 0; mode < backend_->n_null_space_modes; ++mode)
+        for (const auto row : backend_->owned_rows)
+          owned.push_back(backend_->null_space_values[mode * n + row]);
+      parameters.set("null space: vectors", owned.data());
     }
     backend_->amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
     backend_->amg->initialize(*backend_->trilinos_matrix, parameters);
@@ -213,7 +252,29 @@ namespace coshell::solvers
 
   bool LinearSolver::uses_near_null_space() const
   {
-    return method_ == "cg-amg" && rigid_body_near_null_space_;
+    return is_amg() && rigid_body_near_null_space_;
+  }
+
+  bool LinearSolver::is_amg() const
+  {
+    return method_ == "cg-amg" || method_ == "gmres-amg";
+  }
+
+  void LinearSolver::set_row_partition(const IndexSet &owned_rows)
+  {
+    if (!distributed())
+    {
+      backend_->owned_rows.clear();
+      return;
+    }
+    if (method_ == "cholmod" || method_ == "umfpack")
+      throw std::invalid_argument(
+          "Linear solver/Method = " + method_ + " runs on one rank, but " +
+          std::to_string(n_ranks()) +
+          " MPI ranks share this run; choose amesos-mumps (distributed "
+          "direct), amesos-klu (gathered on one rank), cg-amg or gmres-amg");
+    backend_->owned_rows   = owned_rows;
+    backend_->communicator = MPI_COMM_WORLD;
   }
 
   void
@@ -242,31 +303,40 @@ namespace coshell::solvers
       return;
     }
     const TrilinosWrappers::MPI::Vector rhs = backend_->to_trilinos(b);
-    TrilinosWrappers::MPI::Vector solution(backend_->all_rows, MPI_COMM_SELF);
+    TrilinosWrappers::MPI::Vector       solution(backend_->owned_rows,
+                                                 backend_->communicator);
     if (is_amesos())
     {
       backend_->trilinos_direct->solve(solution, rhs);
       last_iterations_ = 1;
     }
     else
+      solve_krylov(solution, rhs, b.l2_norm());
+    backend_->gather(solution, x);
+  }
+
+  void LinearSolver::solve_krylov(TrilinosWrappers::MPI::Vector       &x,
+                                  const TrilinosWrappers::MPI::Vector &b,
+                                  double                               b_norm)
+  {
+    SolverControl control(max_iterations_, tolerance_ * b_norm);
+    try
     {
-      SolverControl control(max_iterations_, tolerance_ * b.l2_norm());
-      SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
-      try
-      {
-        cg.solve(*backend_->trilinos_matrix, solution, rhs, *backend_->amg);
-      }
-      catch (const SolverControl::NoConvergence &failure)
-      {
-        throw std::runtime_error(
-            "Linear solver/Method = cg-amg did not converge in " +
-            std::to_string(failure.last_step) + " iterations (residual " +
-            std::to_string(failure.last_residual) + ")");
-      }
-      last_iterations_ = control.last_step();
+      if (method_ == "cg-amg")
+        SolverCG<TrilinosWrappers::MPI::Vector>(control).solve(
+            *backend_->trilinos_matrix, x, b, *backend_->amg);
+      else
+        SolverGMRES<TrilinosWrappers::MPI::Vector>(control).solve(
+            *backend_->trilinos_matrix, x, b, *backend_->amg);
     }
-    for (unsigned int i = 0; i < x.size(); ++i)
-      x[i] = solution[i];
+    catch (const SolverControl::NoConvergence &failure)
+    {
+      throw std::runtime_error(
+          "Linear solver/Method = " + method_ + " did not converge in " +
+          std::to_string(failure.last_step) + " iterations (residual " +
+          std::to_string(failure.last_residual) + ")");
+    }
+    last_iterations_ = control.last_step();
   }
 
   bool LinearSolver::requires_symmetric() const

@@ -4,7 +4,10 @@
 
 #include <mpi.h>
 
+#include <algorithm>
 #include <cstdlib>
+#include <exception>
+#include <vector>
 
 namespace coshell::solvers
 {
@@ -42,6 +45,120 @@ namespace coshell::solvers
       if (std::getenv(variable))
         return true;
     return false;
+  }
+
+  namespace
+  {
+    /// MPI_Comm_size or MPI_Comm_rank of MPI_COMM_WORLD, or 'without_mpi'
+    /// while MPI is not running.
+    unsigned int world(int (*query)(MPI_Comm, int *), int without_mpi)
+    {
+      int initialized = 0;
+      MPI_Initialized(&initialized);
+      int value = without_mpi;
+      if (initialized)
+        query(MPI_COMM_WORLD, &value);
+      return value;
+    }
+  } // namespace
+
+  unsigned int n_ranks()
+  {
+    return world(MPI_Comm_size, 1);
+  }
+
+  unsigned int this_rank()
+  {
+    return world(MPI_Comm_rank, 0);
+  }
+
+  bool distributed()
+  {
+    return n_ranks() > 1;
+  }
+
+  bool writes_output()
+  {
+    return this_rank() == 0;
+  }
+
+  namespace
+  {
+    void sum_in_place(double *values, std::size_t n)
+    {
+      // MPI counts are int: long arrays go in chunks.
+      constexpr std::size_t chunk = std::size_t(1) << 30;
+      for (std::size_t start = 0; start < n; start += chunk)
+        MPI_Allreduce(MPI_IN_PLACE, values + start,
+                      static_cast<int>(std::min(chunk, n - start)), MPI_DOUBLE,
+                      MPI_SUM, MPI_COMM_WORLD);
+    }
+  } // namespace
+
+  void sum_over_ranks(Vector<double> &values)
+  {
+    if (distributed())
+      sum_in_place(values.begin(), values.size());
+  }
+
+  void sum_over_ranks(SparseMatrix<double> &matrix)
+  {
+    if (!distributed())
+      return;
+    // Every rank holds the same pattern, so the stored entries line up.
+    std::vector<double> entries;
+    entries.reserve(matrix.n_nonzero_elements());
+    for (const auto &entry : matrix)
+      entries.push_back(entry.value());
+    sum_in_place(entries.data(), entries.size());
+    auto summed = entries.begin();
+    for (auto entry = matrix.begin(); entry != matrix.end(); ++entry)
+      entry->value() = *summed++;
+  }
+
+  bool any_rank(bool flag)
+  {
+    if (!distributed())
+      return flag;
+    int local = flag ? 1 : 0, global = 0;
+    MPI_Allreduce(&local, &global, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+    return global != 0;
+  }
+
+  int largest_over_ranks(int value)
+  {
+    if (!distributed())
+      return value;
+    int largest = value;
+    MPI_Allreduce(&value, &largest, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+    return largest;
+  }
+
+  void one_rank_at_a_time(const std::function<void()> &work)
+  {
+    std::exception_ptr failure;
+    for (unsigned int turn = 0; turn < n_ranks(); ++turn)
+    {
+      if (turn == this_rank())
+        try
+        {
+          work();
+        }
+        catch (...)
+        {
+          failure = std::current_exception();
+        }
+      if (distributed())
+        MPI_Barrier(MPI_COMM_WORLD);
+    }
+    if (failure)
+      std::rethrow_exception(failure);
+  }
+
+  void abort_other_ranks(int status)
+  {
+    if (distributed())
+      MPI_Abort(MPI_COMM_WORLD, status);
   }
 
   void ThreadSettings::declare_parameters(ParameterHandler &prm)

@@ -57,5 +57,5 @@ namespace coshell::io
   Checkpoint read_checkpoint(const std::string &path);
 
   /// The HDF5 format tag of the files (attribute "format").
-  inline constexpr const char *checkpoint_format = "coshell checkpoint 1";
+  inline constexpr const char *checkpoint_format = "coshell checkpoint 2";
 } // namespace coshell::io

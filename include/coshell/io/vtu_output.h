@@ -67,11 +67,37 @@ namespace coshell::io
 
   private:
     bool write_vtu_ = true;
+    /// Output/Vertex table: NAME.vertices.csv in double precision.
+    bool vertex_table_ = false;
+    void write_vertex_table(const model::ShellModel      &model,
+                            const dealii::Vector<double> &solution,
+                            const std::string            &path);
     /// Output/Format: VTU files and solution.pvd, or HDF5 files (duplicate
     /// vertices filtered) and solution.xdmf.
-    bool                                                  hdf5_ = false;
+    bool hdf5_ = false;
+    /// Output/Format = pvtu: one piece per rank and NAME.pvtu.
+    bool                                                  pvtu_ = false;
     std::map<std::string, std::vector<dealii::XDMFEntry>> xdmf_series_;
 
+    /// Adds a step (and its companion files) to the series of 'directory';
+    /// returns the series file. Ranks other than 0 only keep the count.
+    std::string record_series(const std::string              &directory,
+                              const std::string              &name,
+                              double                          time,
+                              const std::vector<std::string> &companions);
+    /// Displacement, rotation, the extra DoF fields, N, M, material id
+    /// and thickness; 'storage' keeps the cell fields alive.
+    void add_fields(dealii::DataOut<2, 3>                       &data_out,
+                    const model::ShellModel                     &model,
+                    const dealii::Vector<double>                &solution,
+                    const std::vector<element::ShellResultants> &resultants,
+                    const std::vector<DofField>                 &fields,
+                    std::vector<dealii::Vector<double>>         &storage) const;
+    /// This rank's NAME.piece-RANK.vtu and, on rank 0, NAME.pvtu; returns
+    /// the .pvtu's name.
+    std::string  write_pieces(const dealii::DataOut<2, 3> &data_out,
+                              const std::string           &directory,
+                              const std::string           &name) const;
     std::string  write_hdf5(const dealii::DataOut<2, 3> &data_out,
                             const std::string           &output_directory,
                             const std::string           &name,
@@ -84,5 +110,7 @@ namespace coshell::io
       std::string  file;
     };
     std::map<std::string, std::vector<Entry>> series_;
+    static void                               write_pvd(const std::string        &pvd,
+                                                        const std::vector<Entry> &series);
   };
 } // namespace coshell::io

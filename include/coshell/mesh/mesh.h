@@ -62,6 +62,11 @@ namespace coshell::mesh
   /// throws std::runtime_error naming the first bad cell and its vertices.
   void check_cells(const Surface &surface);
 
+  /// Splits the cells into 'n_parts' parts with METIS (cell subdomain ids
+  /// 0 .. n_parts-1), one per MPI rank. Every rank holds the whole mesh and
+  /// computes the same partition, like parallel::shared::Triangulation.
+  void partition(Surface &surface, unsigned int n_parts);
+
   /// Mesh source and refinement, from the prm subsection "Mesh".
   struct MeshParameters
   {

@@ -1,9 +1,11 @@
 #pragma once
 
 #include <coshell/element/shell_element.h>
+#include <coshell/solvers/parallel_environment.h>
 
 #include <deal.II/base/work_stream.h>
 #include <deal.II/dofs/dof_handler.h>
+#include <deal.II/grid/filtered_iterator.h>
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/vector.h>
 
@@ -29,16 +31,27 @@ namespace coshell::model
     std::string                                            error;
   };
 
+  /// Which cells a loop visits: all of them (results every rank needs,
+  /// computed on each), or the cells this rank owns (assembly whose sums
+  /// the caller adds up over the ranks).
+  enum class CellRange
+  {
+    all,
+    owned
+  };
+
   /// Multithreaded loop over the active cells (WorkStream): 'compute(cell,
   /// contribution)' fills the cell's contribution in parallel and
   /// 'distribute(contribution)' adds it to global objects in order. An
   /// exception thrown by 'compute' would abort the program inside
   /// WorkStream, so it is carried to the copier and rethrown afterwards,
-  /// naming the element.
+  /// naming the element. With CellRange::owned on several ranks, a failure
+  /// on any rank is raised on all of them, so none waits for the others.
   template<typename Compute, typename Distribute>
   void for_each_cell(const dealii::DoFHandler<2, 3> &dof_handler,
                      const Compute                  &compute,
-                     const Distribute               &distribute)
+                     const Distribute               &distribute,
+                     CellRange                       range = CellRange::all)
   {
     using CellIterator = dealii::DoFHandler<2, 3>::active_cell_iterator;
     struct Scratch
@@ -72,8 +85,22 @@ namespace coshell::model
       }
       distribute(copy);
     };
-    dealii::WorkStream::run(dof_handler.begin_active(), dof_handler.end(),
-                            worker, copier, Scratch(), CellContribution());
+    if (range == CellRange::owned && solvers::distributed())
+    {
+      // The mesh is partitioned by subdomain id (METIS), one part per rank.
+      using Filtered = dealii::FilteredIterator<CellIterator>;
+      const dealii::IteratorFilters::SubdomainEqualTo mine(
+          solvers::this_rank());
+      dealii::WorkStream::run(Filtered(mine, dof_handler.begin_active()),
+                              Filtered(mine, dof_handler.end()), worker, copier,
+                              Scratch(), CellContribution());
+      if (solvers::any_rank(!first_error.empty()) && first_error.empty())
+        first_error = "an element on another rank failed (its message is "
+                      "above)";
+    }
+    else
+      dealii::WorkStream::run(dof_handler.begin_active(), dof_handler.end(),
+                              worker, copier, Scratch(), CellContribution());
     if (!first_error.empty())
       throw std::runtime_error(first_error);
   }

@@ -4,6 +4,7 @@
 #include <coshell/mesh/mesh.h>
 #include <coshell/model/element_parameters.h>
 
+#include <deal.II/base/index_set.h>
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/fe_system.h>
 #include <deal.II/lac/affine_constraints.h>
@@ -52,11 +53,24 @@ namespace coshell::model
     const mesh::Surface            &surface() const;
     const ElementParameters        &element_parameters() const;
     global_dof_index                n_dofs() const;
+    /// The DoFs of the cells this MPI rank owns (all of them on one rank):
+    /// a contiguous range, the rows of distributed matrices this rank holds.
+    const dealii::IndexSet &locally_owned_dofs() const;
 
     /// DoFs of vertex 'v' (a Triangulation vertex index). Only vertices
     /// used by a cell have DoFs.
     const VertexDofs &vertex_dofs(unsigned int v) const;
     bool              vertex_is_used(unsigned int v) const;
+    /// A vector in the DoF layout rearranged by mesh vertex (6 entries per
+    /// Triangulation vertex, component fastest, 0 at unused vertices), and
+    /// back: a layout that does not depend on the DoF numbering, which
+    /// differs between serial and MPI runs. Checkpoints store it, so a run
+    /// restarts on any number of ranks. Empty vectors stay empty;
+    /// from_vertex_order() throws if the size does not fit the mesh.
+    dealii::Vector<double>
+    to_vertex_order(const dealii::Vector<double> &dofs) const;
+    dealii::Vector<double>
+    from_vertex_order(const dealii::Vector<double> &by_vertex) const;
     /// Vertex index closest to a point (among used vertices).
     unsigned int nearest_vertex(const dealii::Point<3> &point) const;
 
@@ -105,11 +119,15 @@ namespace coshell::model
     dealii::FESystem<2, 3>              fe_;
     dealii::DoFHandler<2, 3>            dof_handler_;
     std::vector<VertexDofs>             vertex_dofs_;
+    dealii::IndexSet                    locally_owned_dofs_;
     std::vector<int>                    normal_sign_;
     std::vector<element::ShellMaterial> cell_materials_;
     std::vector<double>                 vertex_thickness_;
 
     void number_vertex_dofs();
+    /// On several ranks: numbers DoFs part by part (the mesh's subdomain
+    /// ids), so each rank owns a contiguous range.
+    void number_dofs_by_rank();
     /// Evaluates Material/Thickness and Density per cell, checks them
     /// (naming the cell) and keeps their area-weighted means in element_.
     void assign_cell_materials();

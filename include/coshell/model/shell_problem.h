@@ -132,6 +132,8 @@ namespace coshell::model
     double   time_ = 0, load_factor_ = 0;
     double   acceleration_coefficient_ = 0, velocity_coefficient_ = 0;
     std::array<dealii::Vector<double>, n_force_kinds> forces_;
+    /// On several ranks: this rank's share of the cell forces by kind.
+    std::array<dealii::Vector<double>, n_force_kinds> rank_forces_;
     bool                                              pending_ = false;
     double                 converged_force_scale_              = 0;
     double                 force_floor_                        = 0;
@@ -142,14 +144,18 @@ namespace coshell::model
     EvaluationPoint point() const;
     double          current_force_scale() const;
     void            update_inhomogeneities();
-    /// Runs the cell terms of the contributions 'use' selects.
     /// Adds the blocks of the contributions (contact pairs).
     void assemble_blocks(const EvaluationPoint        &at,
                          dealii::Vector<double>       &residual,
                          dealii::SparseMatrix<double> *tangent);
+    /// Runs the cell terms of the contributions 'use' selects. On several
+    /// ranks each assembles the cells it owns and the sums are added up
+    /// over the ranks, so 'residual' and 'tangent' must be zero on entry.
     void assemble(const std::function<bool(const Contribution &)> &use,
                   const EvaluationPoint                           &at,
                   dealii::Vector<double>                          *residual,
                   dealii::SparseMatrix<double>                    *tangent);
+    void add_up_over_ranks(dealii::Vector<double>       *residual,
+                           dealii::SparseMatrix<double> *tangent);
   };
 } // namespace coshell::model

@@ -1,7 +1,9 @@
 #pragma once
 
+#include <deal.II/base/index_set.h>
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
 #include <deal.II/lac/vector.h>
 
 #include <memory>
@@ -35,6 +37,13 @@ namespace coshell::solvers
     /// Modes the AMG aggregates must represent (the rigid-body motions);
     /// used by the next factorize().
     void set_near_null_space(const std::vector<dealii::Vector<double>> &modes);
+    /// Under mpirun: the rows this rank holds (a contiguous range, see
+    /// ShellModel::locally_owned_dofs). Matrices and right-hand sides stay
+    /// complete on every rank; only this rank's rows go to Trilinos, and
+    /// every rank gets the whole solution. Throws std::invalid_argument,
+    /// naming the parameter, for a method that runs on one rank only. Does
+    /// nothing on one rank.
+    void set_row_partition(const dealii::IndexSet &owned_rows);
 
     /// True for methods that cannot solve a non-symmetric system (cg-amg).
     bool requires_symmetric() const;
@@ -72,6 +81,10 @@ namespace coshell::solvers
 
     void        initialize_amg();
     bool        is_amesos() const;
+    bool        is_amg() const;
+    void        solve_krylov(dealii::TrilinosWrappers::MPI::Vector       &x,
+                             const dealii::TrilinosWrappers::MPI::Vector &b,
+                             double                                       b_norm);
     std::string amesos_solver_name() const;
   };
 } // namespace coshell::solvers

@@ -1,0 +1,78 @@
+# Distributed runs (issue: scale-out). Each scene runs serially and on two
+# MPI ranks (METIS partition, Trilinos matrices on MPI_COMM_WORLD) and must
+# give the serial answer to 1e-10 relative: every quantity of interest, the
+# CSV histories and, in double precision, every vertex's displacement and
+# rotation (Output/Vertex table). The reference is the serial code, an
+# independent path through the same physics: different cell ownership, DoF
+# numbering, matrix assembly and solver.
+find_program(COSHELL_MPIRUN NAMES mpirun mpiexec)
+if(NOT COSHELL_MPIRUN)
+  message(STATUS "mpirun not found: the mpi.* tests are skipped")
+  return()
+endif()
+
+set(CHECK_MPI ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_mpi_equals_serial.py)
+set(mpi_environment "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1")
+
+# coshell_mpi_test(NAME PRM METHOD [--set overrides...])
+function(coshell_mpi_test name prm method)
+  add_test(NAME mpi.${name}
+    COMMAND ${COSHELL_PYTHON} ${CHECK_MPI} --coshell $<TARGET_FILE:coshell>
+            --mpirun ${COSHELL_MPIRUN} --ranks 2 --tolerance 1e-10
+            --prm ${COSHELL_PRM}/${prm}
+            --output ${CMAKE_CURRENT_BINARY_DIR}/output/mpi.${name}
+            --set "Linear solver/Method=${method}"
+            --set "Output/Vertex table=true" ${ARGN})
+  set_tests_properties(mpi.${name} PROPERTIES LABELS mpi
+                       ENVIRONMENT "${mpi_environment}")
+endfunction()
+
+# Linear statics, refinement studies of 4 levels (64 .. 4096 triangles).
+coshell_mpi_test(clamped_square_mumps plates/clamped_square_pressure.prm
+                 amesos-mumps)
+coshell_mpi_test(scordelis_lo_mumps obstacle_course/scordelis_lo_roof.prm
+                 amesos-mumps)
+# AMG with the rigid-body near-null space, distributed over the two ranks;
+# the tolerance is tight so that both runs converge to the same solution.
+coshell_mpi_test(scordelis_lo_cg_amg obstacle_course/scordelis_lo_roof.prm
+                 cg-amg --set "Linear solver/Tolerance=1e-13")
+# Co-rotational statics: the end-moment cantilever (20 load steps, 104
+# Newton iterations), with MUMPS and with GMRES + AMG on the non-symmetric
+# consistent tangent.
+coshell_mpi_test(cantilever_end_moment_mumps benchmarks/cantilever_end_moment.prm
+                 amesos-mumps)
+coshell_mpi_test(cantilever_end_moment_gmres_amg
+                 benchmarks/cantilever_end_moment.prm gmres-amg
+                 --set "Linear solver/Tolerance=1e-12")
+# Dynamics: the clamped plate released after a static pressure stage, made
+# co-rotational, generalized alpha for 50 steps.
+coshell_mpi_test(cantilever_plate_dynamics_mumps
+                 dynamics/cantilever_plate_free_vibration.prm amesos-mumps
+                 --set "Element/Formulation=corotational"
+                 --set "Stage 2/Duration=1.8" --set "Output/Write VTU=true"
+                 --set "Output/Steps between outputs=0")
+# Restart across rank counts: the two-rank run resumes from the middle
+# checkpoint of the serial one (checkpoints store vectors by vertex).
+coshell_mpi_test(cantilever_plate_dynamics_restart
+                 dynamics/cantilever_plate_free_vibration.prm amesos-mumps
+                 --set "Element/Formulation=corotational"
+                 --set "Stage 2/Duration=1.8" --set "Output/Write VTU=true"
+                 --set "Output/Steps between outputs=0"
+                 --set "Output/Checkpoint interval=0.5" --restart-from-middle)
+# Contact: the shell is distributed, the rigid plane and the barrier terms
+# are computed on every rank.
+# The parallel run writes Output/Format = pvtu: one piece per rank.
+coshell_mpi_test(plate_on_plane_mumps contact/plate_on_plane.prm amesos-mumps
+                 --check-pvtu)
+
+# A solver that runs on one rank only stops with a message naming the
+# parameter and the methods that do run distributed.
+add_test(NAME bad_input.mpi_serial_solver
+  COMMAND ${COSHELL_PYTHON} ${COSHELL_EXPECT_FAILURE}
+          --pattern "Linear solver/Method = cholmod runs on one rank.*amesos-mumps"
+          --output ${CMAKE_CURRENT_BINARY_DIR}/output/bad_input.mpi_serial_solver
+          -- ${COSHELL_MPIRUN} --oversubscribe -np 2 $<TARGET_FILE:coshell>
+          ${COSHELL_PRM}/plates/clamped_square_pressure.prm
+          --output ${CMAKE_CURRENT_BINARY_DIR}/output/bad_input.mpi_serial_solver)
+set_tests_properties(bad_input.mpi_serial_solver PROPERTIES
+                     LABELS "bad_input;mpi" ENVIRONMENT "${mpi_environment}")

@@ -1,0 +1,253 @@
+#!/usr/bin/python3
+"""A scene run on several MPI ranks gives the serial answer (issue: scale-out).
+
+check_mpi_equals_serial.py --coshell BIN --prm FILE --output DIR
+                           [--set A/B=v ...] [--ranks 2] [--tolerance 1e-10]
+
+Runs the scene serially and with 'mpirun -np RANKS' (same overrides) and
+checks, relative to the size of each quantity in the serial run:
+- every quantity of interest in summary.json, and its step count;
+- displacement and rotation of every vertex in the last vertex table
+  (run the scene with Output/Vertex table = true: VTU and HDF5 fields are
+  single precision);
+- every column of time_history.csv (dynamics), load_displacement.csv
+  (statics) and contact_forces.csv,
+  row by row;
+and that the parallel run logged once, wrote one summary with mpi_ranks =
+RANKS and left no partial files.
+
+With --restart-from-middle (give Output/Checkpoint interval with --set) the
+parallel run restarts from the serial run's middle checkpoint, and the
+last checkpoints of both runs must agree too: the state (values, rotations,
+velocity, acceleration, pseudo-acceleration), stored by mesh vertex
+whatever the DoF numbering, so a serial checkpoint continues on several
+ranks. The energy bookkeeping's support reactions are printed, not
+asserted: they are differences of internal and inertia forces, so they
+agree to the acceleration's difference times the mass, not relative to
+their own small size; the energies built from them are compared in
+time_history.csv. Newton iteration counts are not compared then (the
+restart counts its own).
+"""
+import argparse
+import glob
+import json
+import os
+import shutil
+import subprocess
+import sys
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+from scene_runner import Checks, add_scene_arguments, exit_with  # noqa: E402
+
+STATE_DATASETS = ["values", "rotations", "velocity", "acceleration",
+                  "pseudo_acceleration"]
+CSV_FILES = ["time_history.csv", "load_displacement.csv", "contact_forces.csv",
+             "convergence.csv"]
+
+
+def run(command, output, log_name):
+    if os.path.isdir(output):
+        shutil.rmtree(output)
+    environment = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1",
+                       OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
+                       DEAL_II_NUM_THREADS="1")
+    print("running:", " ".join(command), flush=True)
+    result = subprocess.run(command, env=environment, text=True,
+                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
+    with open(output + "." + log_name + ".log", "w") as log:
+        log.write(result.stdout)
+    if result.returncode != 0:
+        print(result.stdout[-3000:])
+        exit_with([f"{' '.join(command[:4])}... exited with "
+                   f"{result.returncode}"])
+    return result.stdout
+
+
+def relative_difference(serial, parallel, floor=0.0):
+    """max |serial - parallel| / max |serial|, the scale at least 'floor'
+    (a column that is round-off in both runs, such as the momentum of a
+    body at rest, is measured against the file's larger columns)."""
+    # Empty cells (the first level's convergence rate) read as NaN in both.
+    serial = np.nan_to_num(np.asarray(serial, float))
+    parallel = np.nan_to_num(np.asarray(parallel, float))
+    if serial.shape != parallel.shape:
+        return np.inf
+    scale = max(np.max(np.abs(serial)), floor) if serial.size else floor
+    difference = np.max(np.abs(serial - parallel)) if serial.size else 0.0
+    return difference / scale if scale > 0 else difference
+
+
+def compare_fields(checks, serial, parallel, tolerance, where):
+    """The last vertex table of each run (Output/Vertex table = true: double
+    precision; VTU and HDF5 fields are single precision)."""
+    serial_files = sorted(glob.glob(os.path.join(serial, "*.vertices.csv")))
+    parallel_files = sorted(glob.glob(os.path.join(parallel,
+                                                   "*.vertices.csv")))
+    where = where or "."
+    checks(f"{where}: {len(parallel_files)} vertex tables, serial "
+           f"{len(serial_files)}", len(parallel_files) == len(serial_files))
+    if not serial_files or len(parallel_files) != len(serial_files):
+        return
+    a = np.loadtxt(serial_files[-1], delimiter=",", skiprows=1)
+    b = np.loadtxt(parallel_files[-1], delimiter=",", skiprows=1)
+    for name, columns in (("vertices", slice(0, 4)),
+                          ("displacement", slice(4, 7)),
+                          ("rotation", slice(7, 10))):
+        difference = relative_difference(a[:, columns], b[:, columns])
+        checks(f"{where}: {os.path.basename(serial_files[-1])}: {name} "
+               f"differs by {difference:.2e} relative (tolerance "
+               f"{tolerance:g})", difference <= tolerance)
+
+
+def compare_csv(checks, serial, parallel, tolerance, where):
+    for name in CSV_FILES:
+        path = os.path.join(serial, name)
+        if not os.path.exists(path):
+            continue
+        a = np.genfromtxt(path, delimiter=",", names=True)
+        b = np.genfromtxt(os.path.join(parallel, name), delimiter=",",
+                          names=True)
+        name = os.path.join(where, name)
+        checks(f"{name}: {b.size} rows, serial {a.size}", a.size == b.size)
+        if a.size != b.size:
+            continue
+        worst, column = 0.0, ""
+        fields = [f for f in a.dtype.names
+                  if not f.endswith("_s") and "seconds" not in f]  # no clocks
+        floor = 1e-6 * max(np.nanmax(np.abs(a[f])) for f in fields)
+        for field in fields:
+            difference = relative_difference(a[field], b[field], floor)
+            if difference > worst:
+                worst, column = difference, field
+        checks(f"{name}: largest relative difference {worst:.2e} "
+               f"({column or 'none'})", worst <= tolerance)
+
+
+def compare_summaries(checks, serial, parallel, ranks, tolerance, restarted):
+    with open(os.path.join(serial, "summary.json")) as f:
+        a = json.load(f)
+    with open(os.path.join(parallel, "summary.json")) as f:
+        b = json.load(f)
+    checks(f"summary.json: mpi_ranks = {b.get('mpi_ranks')}",
+           b.get("mpi_ranks") == ranks)
+    for name, value in a.get("qoi", {}).items():
+        difference = relative_difference([value], [b["qoi"].get(name, np.inf)])
+        checks(f"{name} = {b['qoi'].get(name)}, serial {value} "
+               f"(relative {difference:.1e})", difference <= tolerance)
+    for key in ("steps",) if restarted else ("newton_iterations", "steps"):
+        if key in a:
+            checks(f"{key}: {b.get(key)}, serial {a[key]}",
+                   b.get(key) == a[key])
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    add_scene_arguments(parser)
+    parser.add_argument("--ranks", type=int, default=2)
+    parser.add_argument("--mpirun", default="mpirun")
+    parser.add_argument("--restart-from-middle", action="store_true")
+    parser.add_argument("--check-pvtu", action="store_true")
+    parser.add_argument("--tolerance", type=float, default=1e-10)
+    args = parser.parse_args()
+    overrides = []
+    for assignment in args.set:
+        overrides += ["--set", assignment]
+    serial = os.path.join(args.output, "serial")
+    parallel = os.path.join(args.output, f"ranks-{args.ranks}")
+    os.makedirs(args.output, exist_ok=True)
+    run([args.coshell, args.prm, "--output", serial] + overrides, serial,
+        "serial")
+    pvtu = ["--set", "Output/Format=pvtu"] if args.check_pvtu else []
+    restart = []
+    if args.restart_from_middle:
+        checkpoints = sorted(glob.glob(os.path.join(serial, "checkpoint-*.h5")))
+        if not checkpoints:
+            exit_with(["the serial run wrote no checkpoint"])
+        restart = ["--restart", checkpoints[len(checkpoints) // 2]]
+    log = run([args.mpirun, "--oversubscribe", "-np", str(args.ranks),
+               args.coshell, args.prm, "--output", parallel] + overrides +
+              restart + pvtu, parallel, "mpi")
+
+    checks = Checks()
+    checks(f"the parallel log says 'results written' "
+           f"{log.count('results written to')} time(s)",
+           log.count("results written to") == 1)
+    partial = glob.glob(os.path.join(parallel, "**", "*.partial"),
+                        recursive=True)
+    checks(f"{len(partial)} partial files left", not partial)
+    compare_summaries(checks, serial, parallel, args.ranks, args.tolerance,
+                      args.restart_from_middle)
+    # A refinement study writes each level into its own directory.
+    for level in [""] + sorted(os.path.basename(d) for d in
+                               glob.glob(os.path.join(serial, "level-*"))):
+        a, b = os.path.join(serial, level), os.path.join(parallel, level)
+        compare_fields(checks, a, b, args.tolerance, level)
+        compare_csv(checks, a, b, args.tolerance, level)
+    if args.restart_from_middle:
+        compare_checkpoints(checks, serial, parallel, args.tolerance)
+    if args.check_pvtu:
+        check_pieces(checks, parallel, args.ranks)
+    exit_with(checks.failures)
+
+
+def check_pieces(checks, parallel, ranks):
+    """Output/Format = pvtu: the series lists .pvtu files, the last of which
+    joins one piece per rank; the pieces together hold every triangle."""
+    import xml.etree.ElementTree as ElementTree
+    with open(os.path.join(parallel, "summary.json")) as f:
+        n_cells = json.load(f)["n_cells"]
+    series = ElementTree.parse(os.path.join(parallel, "solution.pvd"))
+    shells = [d.get("file") for d in series.iter("DataSet")
+              if d.get("part") == "0"]
+    checks(f"solution.pvd lists {len(shells)} .pvtu files",
+           bool(shells) and all(s.endswith(".pvtu") for s in shells))
+    if not shells:
+        return
+    record = ElementTree.parse(os.path.join(parallel, shells[-1]))
+    pieces = [p.get("Source") for p in record.iter("Piece")]
+    checks(f"{shells[-1]} joins {len(pieces)} pieces", len(pieces) == ranks)
+    cells = 0
+    for piece in pieces:
+        path = os.path.join(parallel, piece)
+        if not os.path.exists(path):
+            checks(f"piece {piece} is missing", False)
+            continue
+        piece_cells = int(next(ElementTree.parse(path).iter("Piece"))
+                          .get("NumberOfCells"))
+        checks(f"{piece}: {piece_cells} triangles", piece_cells > 0)
+        cells += piece_cells
+    checks(f"the pieces hold {cells} triangles, the mesh {n_cells}",
+           cells == n_cells)
+
+
+def compare_checkpoints(checks, serial, parallel, tolerance):
+    import h5py
+    a_files = sorted(glob.glob(os.path.join(serial, "checkpoint-*.h5")))
+    b_files = sorted(glob.glob(os.path.join(parallel, "checkpoint-*.h5")))
+    checks(f"last checkpoint {os.path.basename(b_files[-1]) if b_files else None}"
+           f", serial {os.path.basename(a_files[-1])}",
+           bool(b_files) and os.path.basename(b_files[-1]) ==
+           os.path.basename(a_files[-1]))
+    if not b_files:
+        return
+    with h5py.File(a_files[-1], "r") as a, h5py.File(b_files[-1], "r") as b:
+        for name in a:
+            if name not in b:
+                checks(f"dataset {name} missing in the parallel checkpoint",
+                       False)
+                continue
+            difference = relative_difference(np.ravel(a[name][()]),
+                                             np.ravel(b[name][()]))
+            if name in STATE_DATASETS:
+                checks(f"last checkpoints: {name} differs by "
+                       f"{difference:.2e} relative", difference <= tolerance)
+            else:
+                print(f"info last checkpoints: {name} differs by "
+                      f"{difference:.2e} relative (not asserted)")
+
+
+if __name__ == "__main__":
+    main()
