@@ -32,6 +32,10 @@ coshell_mpi_test(clamped_square_mumps plates/clamped_square_pressure.prm
                  amesos-mumps)
 coshell_mpi_test(scordelis_lo_mumps obstacle_course/scordelis_lo_roof.prm
                  amesos-mumps)
+# Three ranks (uneven parts, oversubscribed on two cores) and HDF5/XDMF
+# output, which rank 0 writes for the whole mesh.
+coshell_mpi_test(scordelis_lo_3_ranks_hdf5 obstacle_course/scordelis_lo_roof.prm
+                 amesos-mumps --ranks 3 --set "Output/Format=hdf5")
 # AMG with the rigid-body near-null space, distributed over the two ranks;
 # the tolerance is tight so that both runs converge to the same solution.
 coshell_mpi_test(scordelis_lo_cg_amg obstacle_course/scordelis_lo_roof.prm

@@ -13,9 +13,10 @@ the process wall time, and the peak resident memory of the largest process
 
 Writes doc/performance/mpi_scaling.csv and .png (phase times per
 configuration, one panel per method). With --largest N1 N2 ... it instead
-runs cg-amg serially at those sizes and appends to
-doc/performance/mpi_largest.csv (DoFs, wall time, peak memory, bytes per
-DoF), stopping at the first size that fails.
+runs cg-amg at those sizes (one rank with 2 threads, or --largest-ranks
+ranks with one thread each) and appends to doc/performance/mpi_largest.csv
+(DoFs, wall time, peak memory, bytes per DoF), stopping at the first size
+that fails.
 
 Usage (from the repository root):
   /usr/bin/python3 doc/scripts/mpi_scaling.py --coshell build/coshell
@@ -23,6 +24,7 @@ Usage (from the repository root):
       --largest 500 700 912
 """
 import argparse
+import csv
 import json
 import os
 import re
@@ -101,11 +103,29 @@ def plot(rows, methods, path, stamp):
                       ha="center", va="bottom", fontsize=8)
         axis.set_title(f"{method}, {mine[0]['n_dofs']} DoFs" if mine else method)
         axis.set_ylabel("wall time of rank 0, s")
-        axis.legend(fontsize=8)
+        axis.legend(fontsize=8, loc="upper right", ncol=2, framealpha=0.9)
+        axis.set_ylim(0, 1.45 * max(bottom))
     figure.suptitle(stamp, fontsize=8)
     figure.tight_layout()
     figure.savefig(path, dpi=110)
     print("wrote", path)
+
+
+def redraw(methods):
+    path = os.path.join(OUT_DIR, "mpi_scaling.csv")
+    with open(path) as f:
+        lines = f.readlines()
+    stamp = "; ".join(l[2:].strip() for l in lines[:2] if l.startswith("#"))
+    rows = list(csv.DictReader(l for l in lines if not l.startswith("#")))
+    for row in rows:
+        for key in row:
+            if key.endswith("_s") or key.startswith("peak") or key in (
+                    "ranks", "threads_per_rank", "n_dofs"):
+                row[key] = float(row[key])
+        row["ranks"], row["threads_per_rank"] = (int(row["ranks"]),
+                                                 int(row["threads_per_rank"]))
+        row["n_dofs"] = int(row["n_dofs"])
+    plot(rows, methods, os.path.join(OUT_DIR, "mpi_scaling.png"), stamp)
 
 
 def main():
@@ -115,19 +135,35 @@ def main():
     parser.add_argument("--methods", nargs="+",
                         default=["amesos-mumps", "cg-amg"])
     parser.add_argument("--largest", type=int, nargs="*")
+    parser.add_argument("--largest-ranks", type=int, default=1,
+                        help="ranks of the --largest runs (1: one rank with "
+                        "2 threads; more: 1 thread each)")
     parser.add_argument("--scratch", default="/tmp/coshell_mpi_scaling")
+    parser.add_argument("--plot-only", action="store_true",
+                        help="redraw the PNG from the CSV")
     args = parser.parse_args()
+    if args.plot_only:
+        redraw(args.methods)
+        return
     machine, commit = machine_and_commit()
     header = [f"machine: {machine}", f"commit: {commit}",
               "clamped square plate, crossed, CST+DKT, linear static"]
     if args.largest:
         rows = []
         for size in args.largest:
-            row = run(args.coshell, size, "cg-amg", 1, 2, args.scratch)
+            ranks, threads = (args.largest_ranks, 1) if args.largest_ranks > 1 \
+                else (1, 2)
+            row = run(args.coshell, size, "cg-amg", ranks, threads,
+                      args.scratch)
             if row is None:
                 break
             rows.append(row)
-        write_csv(os.path.join(OUT_DIR, "mpi_largest.csv"), rows, header)
+        path = os.path.join(OUT_DIR, "mpi_largest.csv")
+        if os.path.exists(path):  # append to the earlier runs
+            with open(path) as f:
+                rows = [r for r in csv.DictReader(
+                    l for l in f if not l.startswith("#"))] + rows
+        write_csv(path, rows, header)
         return
     rows = [run(args.coshell, args.size, method, ranks, threads, args.scratch)
             for method in args.methods for ranks, threads in CONFIGURATIONS]

@@ -87,6 +87,16 @@ def compare_fields(checks, serial, parallel, tolerance, where):
     parallel_files = sorted(glob.glob(os.path.join(parallel,
                                                    "*.vertices.csv")))
     where = where or "."
+    serial_h5 = glob.glob(os.path.join(serial, "*.h5"))
+    if serial_h5:  # Output/Format = hdf5 (checkpoints are named checkpoint-*)
+        fields = [f for f in serial_h5 if "checkpoint-" not in f]
+        parallel_h5 = [f for f in glob.glob(os.path.join(parallel, "*.h5"))
+                       if "checkpoint-" not in f]
+        checks(f"{where}: {len(parallel_h5)} HDF5 field files and "
+               f"{len(glob.glob(os.path.join(parallel, '*.xdmf')))} .xdmf, "
+               f"serial {len(fields)}", len(parallel_h5) == len(fields) and
+               os.path.exists(os.path.join(parallel, "solution.xdmf")) ==
+               os.path.exists(os.path.join(serial, "solution.xdmf")))
     checks(f"{where}: {len(parallel_files)} vertex tables, serial "
            f"{len(serial_files)}", len(parallel_files) == len(serial_files))
     if not serial_files or len(parallel_files) != len(serial_files):
