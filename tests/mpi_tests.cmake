@@ -69,14 +69,33 @@ coshell_mpi_test(cantilever_plate_dynamics_restart
 coshell_mpi_test(plate_on_plane_mumps contact/plate_on_plane.prm amesos-mumps
                  --check-pvtu)
 
+# coshell_mpi_bad_input_test(NAME PATTERN RANKS coshell arguments...): the
+# run under mpirun must stop with a message matching PATTERN.
+function(coshell_mpi_bad_input_test name pattern ranks)
+  set(output ${CMAKE_CURRENT_BINARY_DIR}/output/bad_input.${name})
+  add_test(NAME bad_input.${name}
+    COMMAND ${COSHELL_PYTHON} ${COSHELL_EXPECT_FAILURE} --pattern ${pattern}
+            --output ${output}
+            -- ${COSHELL_MPIRUN} --oversubscribe -np ${ranks}
+            $<TARGET_FILE:coshell> ${ARGN} --output ${output})
+  set_tests_properties(bad_input.${name} PROPERTIES LABELS "bad_input;mpi"
+                       ENVIRONMENT "${mpi_environment}")
+endfunction()
+
 # A solver that runs on one rank only stops with a message naming the
-# parameter and the methods that do run distributed.
-add_test(NAME bad_input.mpi_serial_solver
-  COMMAND ${COSHELL_PYTHON} ${COSHELL_EXPECT_FAILURE}
-          --pattern "Linear solver/Method = cholmod runs on one rank.*amesos-mumps"
-          --output ${CMAKE_CURRENT_BINARY_DIR}/output/bad_input.mpi_serial_solver
-          -- ${COSHELL_MPIRUN} --oversubscribe -np 2 $<TARGET_FILE:coshell>
-          ${COSHELL_PRM}/plates/clamped_square_pressure.prm
-          --output ${CMAKE_CURRENT_BINARY_DIR}/output/bad_input.mpi_serial_solver)
-set_tests_properties(bad_input.mpi_serial_solver PROPERTIES
-                     LABELS "bad_input;mpi" ENVIRONMENT "${mpi_environment}")
+# parameter and the methods that do run distributed; so do what runs on one
+# rank only, and a mesh too small for the ranks.
+coshell_mpi_bad_input_test(mpi_serial_solver
+  "Linear solver/Method = cholmod runs on one rank.*amesos-mumps" 2
+  ${COSHELL_PRM}/plates/clamped_square_pressure.prm)
+coshell_mpi_bad_input_test(mpi_modes "Analysis/Type = modes runs on one rank" 2
+  ${COSHELL_PRM}/dynamics/cantilever_plate_modes.prm
+  --set "Linear solver/Method=amesos-mumps")
+coshell_mpi_bad_input_test(mpi_interactive "--interactive runs on one rank" 2
+  ${COSHELL_PRM}/dynamics/free_flying_plate.prm --interactive
+  --set "Linear solver/Method=amesos-mumps")
+coshell_mpi_bad_input_test(mpi_mesh_too_small
+  "the mesh has 4 triangles, too few for 3 MPI ranks" 3
+  ${COSHELL_PRM}/plates/clamped_square_pressure.prm
+  --set "Mesh/Subdivisions x=1" --set "Mesh/Subdivisions y=1"
+  --set "Mesh/Refinement levels=0" --set "Linear solver/Method=amesos-mumps")

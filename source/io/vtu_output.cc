@@ -186,7 +186,7 @@ namespace coshell::io
     // With pvtu every rank writes the piece of its own cells.
     if (!solvers::writes_output() && !pvtu_)
       return record_series(output_directory, name, time, companions);
-    if (vertex_table_)
+    if (vertex_table_ && solvers::writes_output())
       write_vertex_table(model, solution,
                          output_directory + "/" + name + ".vertices.csv");
     DataOut<2, 3> data_out;
@@ -206,11 +206,11 @@ namespace coshell::io
     std::filesystem::create_directories(output_directory);
     if (hdf5_)
       return write_hdf5(data_out, output_directory, name, time);
-    const std::string file =
-        pvtu_ ? write_pieces(data_out, output_directory, name) : name + ".vtu";
-    if (!pvtu_)
+    if (pvtu_)
+      write_pieces(data_out, output_directory, name);
+    else
     {
-      std::ofstream out(output_directory + "/" + file);
+      std::ofstream out(output_directory + "/" + name + ".vtu");
       data_out.write_vtu(out);
     }
     const std::string pvd =
@@ -220,9 +220,9 @@ namespace coshell::io
     return pvd;
   }
 
-  std::string VtuOutput::write_pieces(const DataOut<2, 3> &data_out,
-                                      const std::string   &directory,
-                                      const std::string   &name) const
+  void VtuOutput::write_pieces(const DataOut<2, 3> &data_out,
+                               const std::string   &directory,
+                               const std::string   &name) const
   {
     const auto piece = [&](unsigned int rank)
     { return name + ".piece-" + std::to_string(rank) + ".vtu"; };
@@ -238,7 +238,6 @@ namespace coshell::io
       std::ofstream out(directory + "/" + name + ".pvtu");
       data_out.write_pvtu_record(out, pieces);
     }
-    return name + ".pvtu";
   }
 
   void VtuOutput::write_pvd(const std::string        &pvd,

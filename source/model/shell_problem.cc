@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <tuple>
 
 namespace coshell::model
 {
@@ -104,6 +105,13 @@ namespace coshell::model
     }
   }
 
+  namespace
+  {
+    /// The force kinds cells contribute (internal, external, inertia).
+    constexpr unsigned int n_cell_force_kinds =
+        std::tuple_size_v<decltype(CellContribution::forces_by_kind)>;
+  } // namespace
+
   void
   ShellProblem::assemble(const std::function<bool(const Contribution &)> &use,
                          const EvaluationPoint                           &at,
@@ -144,7 +152,7 @@ namespace coshell::model
         },
         [&](const CellContribution &copy)
         {
-          for (unsigned int k = 0; k < 3; ++k)
+          for (unsigned int k = 0; k < n_cell_force_kinds; ++k)
             for (unsigned int i = 0; i < element::shell_dofs; ++i)
               kind_forces[k][copy.dofs[i]] += copy.forces_by_kind[k][i];
           if (with_tangent && residual)
@@ -165,7 +173,7 @@ namespace coshell::model
   void ShellProblem::add_up_over_ranks(Vector<double>       *residual,
                                        SparseMatrix<double> *tangent)
   {
-    for (unsigned int k = 0; k < n_force_kinds; ++k)
+    for (unsigned int k = 0; k < n_cell_force_kinds; ++k)
     {
       solvers::sum_over_ranks(rank_forces_[k]);
       forces_[k] += rank_forces_[k];

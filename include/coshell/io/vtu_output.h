@@ -93,9 +93,8 @@ namespace coshell::io
                     const std::vector<element::ShellResultants> &resultants,
                     const std::vector<DofField>                 &fields,
                     std::vector<dealii::Vector<double>>         &storage) const;
-    /// This rank's NAME.piece-RANK.vtu and, on rank 0, NAME.pvtu; returns
-    /// the .pvtu's name.
-    std::string  write_pieces(const dealii::DataOut<2, 3> &data_out,
+    /// This rank's NAME.piece-RANK.vtu and, on rank 0, NAME.pvtu.
+    void         write_pieces(const dealii::DataOut<2, 3> &data_out,
                               const std::string           &directory,
                               const std::string           &name) const;
     std::string  write_hdf5(const dealii::DataOut<2, 3> &data_out,
