@@ -48,6 +48,11 @@ namespace coshell::contact
     const double target = kept_fraction * gap(distance);
     double       t      = 0;
     double       step   = (1 - kept_fraction) * gap(distance) / rate;
+    // The gap shrinks at most at 'rate': a first safe step past the end
+    // means the whole motion is safe (the loop would find the same after
+    // one more distance).
+    if (step >= 1)
+      return 1;
     for (unsigned int iteration = 0; iteration < 100000; ++iteration)
     {
       for (unsigned int i = 0; i < 4; ++i)

@@ -20,12 +20,14 @@ namespace coshell::contact
   {
     constexpr double infinity = std::numeric_limits<double>::infinity();
 
-    BoundingBox<3> box_around(const std::vector<Point<3>> &points,
-                              double                       inflation)
+    /// Whether two boxes overlap (touching counts).
+    bool overlap(const BoundingBox<3> &a, const BoundingBox<3> &b)
     {
-      BoundingBox<3> box(points);
-      box.extend(inflation);
-      return box;
+      for (unsigned int d = 0; d < 3; ++d)
+        if (a.upper_bound(d) < b.lower_bound(d) ||
+            b.upper_bound(d) < a.lower_bound(d))
+          return false;
+      return true;
     }
 
     Point<3> centroid(const std::vector<Point<3>> &points)
@@ -145,6 +147,45 @@ namespace coshell::contact
     return x;
   }
 
+  BoundingBox<3> Contact::box_of(std::initializer_list<Point<3>> points,
+                                 double                          inflation)
+  {
+    // Without the heap: these boxes are made in the innermost loops.
+    Point<3> lower = *points.begin(), upper = lower;
+    for (const Point<3> &p : points)
+      for (unsigned int d = 0; d < 3; ++d)
+      {
+        lower[d] = std::min(lower[d], p[d]);
+        upper[d] = std::max(upper[d], p[d]);
+      }
+    for (unsigned int d = 0; d < 3; ++d)
+    {
+      lower[d] -= inflation;
+      upper[d] += inflation;
+    }
+    return BoundingBox<3>(std::make_pair(lower, upper));
+  }
+
+  BoundingBox<3>
+  Contact::swept_shell_box(const std::vector<Point<3>>     &x,
+                           const std::vector<Tensor<1, 3>> *dx) const
+  {
+    BoundingBox<3> box = box_of({x[shell_vertices_[0]]}, 0);
+    for (const unsigned v : shell_vertices_)
+    {
+      box.merge_with(box_of({x[v]}, 0));
+      if (dx)
+        box.merge_with(box_of({x[v] + (*dx)[v]}, 0));
+    }
+    box.extend(max_reach()); // as the shell trees are inflated
+    return box;
+  }
+
+  double Contact::pair_reach(double offset) const
+  {
+    return offset + (parameters_.method == Method::barrier ? activation_ : 0.0);
+  }
+
   void Contact::rebuild_tree(unsigned int obstacle)
   {
     const auto                                      &x = current_[obstacle];
@@ -152,10 +193,10 @@ namespace coshell::contact
     const auto &triangles = parameters_.obstacles[obstacle].triangles;
     boxes.reserve(triangles.size());
     for (unsigned int k = 0; k < triangles.size(); ++k)
-      boxes.emplace_back(box_around({x[triangles[k][0]], x[triangles[k][1]],
-                                     x[triangles[k][2]]},
-                                    reach(obstacle)),
-                         k);
+      boxes.emplace_back(
+          box_of({x[triangles[k][0]], x[triangles[k][1]], x[triangles[k][2]]},
+                 0),
+          k);
     obstacle_trees_[obstacle] = pack_rtree(boxes);
   }
 
@@ -252,10 +293,9 @@ namespace coshell::contact
                                unsigned int                     o,
                                const std::vector<Tensor<1, 3>> *dX) const
   {
-    const auto  &X         = current_[o];
-    const auto  &triangles = parameters_.obstacles[o].triangles;
-    const double r         = largest_offset(o);
-    const auto   along     = [](const std::vector<Tensor<1, 3>> *d, unsigned i)
+    const auto &X         = current_[o];
+    const auto &triangles = parameters_.obstacles[o].triangles;
+    const auto  along     = [](const std::vector<Tensor<1, 3>> *d, unsigned i)
     { return d ? (*d)[i] : Tensor<1, 3>(); };
     Tree swept_obstacle;
     if (dX)
@@ -263,10 +303,12 @@ namespace coshell::contact
       std::vector<std::pair<BoundingBox<3>, unsigned>> boxes;
       for (unsigned int k = 0; k < triangles.size(); ++k)
       {
-        std::vector<Point<3>> corners;
-        for (const unsigned i : triangles[k])
-          corners.insert(corners.end(), {X[i], X[i] + (*dX)[i]});
-        boxes.emplace_back(box_around(corners, r), k);
+        const auto &t = triangles[k];
+        boxes.emplace_back(
+            box_of({X[t[0]], X[t[0]] + (*dX)[t[0]], X[t[1]],
+                    X[t[1]] + (*dX)[t[1]], X[t[2]], X[t[2]] + (*dX)[t[2]]},
+                   0),
+            k);
       }
       swept_obstacle = pack_rtree(boxes);
     }
@@ -276,9 +318,9 @@ namespace coshell::contact
     for (const unsigned v : shell_vertices_)
     {
       hits.clear();
-      obstacle_tree.query(
-          bgi::intersects(box_around({x[v], x[v] + along(dx, v)}, 0)),
-          std::back_inserter(hits));
+      obstacle_tree.query(bgi::intersects(box_of({x[v], x[v] + along(dx, v)},
+                                                 offset(o, true, v))),
+                          std::back_inserter(hits));
       for (const auto &hit : hits)
       {
         const auto &t = triangles[hit.second];
@@ -290,12 +332,15 @@ namespace coshell::contact
                                             offset(o, true, v)));
       }
     }
+    // Only the obstacle's vertices near the (swept) shell can meet it.
+    const BoundingBox<3> shell_box = swept_shell_box(x, dx);
     for (unsigned int j = 0; j < X.size(); ++j)
     {
+      const BoundingBox<3> box = box_of({X[j], X[j] + along(dX, j)}, 0);
+      if (!overlap(box, shell_box))
+        continue;
       hits.clear();
-      shell_tree.query(
-          bgi::intersects(box_around({X[j], X[j] + along(dX, j)}, 0)),
-          std::back_inserter(hits));
+      shell_tree.query(bgi::intersects(box), std::back_inserter(hits));
       for (const auto &hit : hits)
       {
         const auto &t = shell_triangles_[hit.second];
@@ -391,6 +436,8 @@ namespace coshell::contact
     const Stopwatch watch(timing_.detection);
     set_target_time(time);
     positions_ = shell_positions(state);
+    if (reuse_trial_detection())
+      return;
     // The shell does not move within prepare(): one tree serves the
     // obstacles' step filter and the pair search.
     const Tree shell_tree =
@@ -436,6 +483,7 @@ namespace coshell::contact
   void Contact::save()
   {
     retrying_ = false;
+    trial_detection_.reset();
     for (unsigned int o = 0; o < obstacle_work_.size(); ++o)
       obstacle_work_[o] += step_work(o);
     saved_shell_force_            = shell_force_;
@@ -459,18 +507,47 @@ namespace coshell::contact
 
   void Contact::end_trial()
   {
+    Detection detection{positions_,
+                        target_time_,
+                        trial_current_,
+                        current_,
+                        std::vector<Tree>(current_.size()),
+                        pending_,
+                        pairs_};
     pending_ = trial_pending_;
     for (unsigned int o = 0; o < current_.size(); ++o)
       if (current_[o] != trial_current_[o])
       {
-        current_[o] = trial_current_[o];
+        detection.trees_after[o] = std::move(obstacle_trees_[o]);
+        current_[o]              = trial_current_[o];
         rebuild_tree(o);
       }
+    trial_detection_ = std::move(detection);
+  }
+
+  bool Contact::reuse_trial_detection()
+  {
+    std::optional<Detection> detection = std::move(trial_detection_);
+    trial_detection_.reset();
+    if (!detection || detection->positions != positions_ ||
+        detection->target_time != target_time_ ||
+        detection->obstacles_before != current_)
+      return false;
+    for (unsigned int o = 0; o < current_.size(); ++o)
+      if (detection->obstacles_after[o] != current_[o])
+      {
+        current_[o]        = std::move(detection->obstacles_after[o]);
+        obstacle_trees_[o] = std::move(detection->trees_after[o]);
+      }
+    pending_ = detection->pending;
+    pairs_   = std::move(detection->pairs);
+    return true;
   }
 
   void Contact::restore()
   {
     retrying_ = parameters_.project_tangent_on_retry;
+    trial_detection_.reset();
     if (saved_.empty())
       return;
     current_ = saved_;

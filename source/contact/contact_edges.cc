@@ -202,11 +202,12 @@ namespace coshell::contact
   void Contact::edges_near(
       const Tree                                 &tree,
       const std::vector<std::array<unsigned, 3>> &triangle_edges,
-      const std::vector<Point<3>>                &corners,
+      std::initializer_list<Point<3>>             corners,
+      double                                      inflation,
       std::vector<unsigned int>                  &edges)
   {
     std::vector<std::pair<BoundingBox<3>, unsigned>> hits;
-    tree.query(bgi::intersects(BoundingBox<3>(corners)),
+    tree.query(bgi::intersects(box_of(corners, inflation)),
                std::back_inserter(hits));
     edges.clear();
     for (const auto &hit : hits)
@@ -224,7 +225,8 @@ namespace coshell::contact
 
   /// Additive CCD of every shell edge against the edges of the obstacle
   /// triangles its swept box meets ('obstacle_tree': those triangles'
-  /// boxes, swept by dX if the obstacle moves, inflated by its offset).
+  /// boxes, swept by dX if the obstacle moves; the query boxes carry the
+  /// edge's offset).
   double Contact::edge_ccd_fraction(const std::vector<Point<3>>     &x,
                                     const std::vector<Tensor<1, 3>> *dx,
                                     const Tree  &obstacle_tree,
@@ -240,7 +242,8 @@ namespace coshell::contact
     {
       const auto [a, b] = shell_edges_[e];
       edges_near(obstacle_tree, obstacle_triangle_edges_[o],
-                 {x[a], x[b], x[a] + along(dx, a), x[b] + along(dx, b)}, edges);
+                 {x[a], x[b], x[a] + along(dx, a), x[b] + along(dx, b)},
+                 edge_offset(o, e), edges);
       for (const unsigned f : edges)
       {
         const auto [c, d] = obstacle_edges_[o][f];

@@ -49,6 +49,9 @@ namespace coshell::contact
       std::array<long, 3> shell, obstacle;
       double              distance;
       bool                shell_side_varies; ///< which side's feature varies
+      /// False for a witness only (it takes part in the local minima, but
+      /// is not listed as a pair).
+      bool listed = true;
     };
 
     /// Whether feature a is a proper part (vertex, edge) of feature b.
@@ -115,7 +118,7 @@ namespace coshell::contact
         const std::array<long, 7> key = {
             obstacle,      c.shell[0],    c.shell[1],   c.shell[2],
             c.obstacle[0], c.obstacle[1], c.obstacle[2]};
-        if (!keep[k] || !seen_.insert(key).second)
+        if (!keep[k] || !c.listed || !seen_.insert(key).second)
           continue;
         contact_.pairs_.push_back(found_[k]);
         const double gap       = c.distance - contact_.offset(found_[k]);
@@ -164,14 +167,16 @@ namespace coshell::contact
     for (const unsigned v : shell_vertices_)
     {
       hits.clear();
-      obstacle_trees_[o].query(bgi::intersects(BoundingBox<3>({x[v], x[v]})),
-                               std::back_inserter(hits));
+      const double   vertex_reach = pair_reach(offset(o, true, v));
+      BoundingBox<3> box({x[v], x[v]});
+      box.extend(vertex_reach);
+      obstacle_trees_[o].query(bgi::intersects(box), std::back_inserter(hits));
       for (const auto &hit : hits)
       {
         const auto &t = triangles[hit.second];
         const auto  d =
             point_triangle_distance(x[v], X[t[0]], X[t[1]], X[t[2]], false);
-        if (std::sqrt(d.value) < reach(o))
+        if (std::sqrt(d.value) < vertex_reach)
           selector.add({{-1, -1, long(v)},
                         feature_vertices(t, d.feature),
                         std::sqrt(d.value),
@@ -192,7 +197,7 @@ namespace coshell::contact
     for (const unsigned v : shell_vertices_)
     {
       hits.clear();
-      shell_tree.query(bgi::intersects(BoundingBox<3>({x[v], x[v]})),
+      shell_tree.query(bgi::intersects(box_of({x[v]}, 0)),
                        std::back_inserter(hits));
       for (const auto &hit : hits)
       {
@@ -225,19 +230,25 @@ namespace coshell::contact
       if (!shell_box.point_inside(X[j]))
         continue;
       hits.clear();
-      shell_tree.query(bgi::intersects(BoundingBox<3>({X[j], X[j]})),
+      shell_tree.query(bgi::intersects(box_of({X[j]}, 0)),
                        std::back_inserter(hits));
       for (const auto &hit : hits)
       {
         const auto &t = shell_triangles_[hit.second];
         const auto  d =
             point_triangle_distance(X[j], x[t[0]], x[t[1]], x[t[2]], false);
+        // A shell vertex against an obstacle vertex is the shell vertex
+        // search's pair (with the vertex's thickness), listed there when
+        // within that vertex's reach and without force beyond it; here it
+        // only witnesses for the local minima.
+        const bool vertex_vertex = d.feature < 3;
         if (std::sqrt(d.value) < reach(o))
           selector.add(
               {feature_vertices(t, d.feature),
                {-1, -1, long(j)},
                std::sqrt(d.value),
-               true},
+               true,
+               !vertex_vertex},
               {false, o, hit.second, j, shell_triangle_area_[hit.second] / 3});
       }
       selector.settle();
@@ -514,14 +525,15 @@ namespace coshell::contact
     std::vector<unsigned int> edges;
     for (unsigned int e = 0; e < shell_edges_.size(); ++e)
     {
-      const auto [a, b] = shell_edges_[e];
+      const auto [a, b]       = shell_edges_[e];
+      const double edge_reach = pair_reach(edge_offset(o, e));
       edges_near(obstacle_trees_[o], obstacle_triangle_edges_[o], {x[a], x[b]},
-                 edges);
+                 edge_reach, edges);
       for (const unsigned f : edges)
       {
         const auto [c, d] = obstacle_edges_[o][f];
         offer_edge_pair(selector, {true, o, e, f, shell_edge_area_[e]},
-                        {x[a], x[b], X[c], X[d]}, {a, b, c, d}, reach(o));
+                        {x[a], x[b], X[c], X[d]}, {a, b, c, d}, edge_reach);
       }
       selector.settle();
     }
@@ -561,7 +573,7 @@ namespace coshell::contact
     for (unsigned int e = 0; e < shell_edges_.size(); ++e)
     {
       const auto [a, b] = shell_edges_[e];
-      edges_near(shell_tree, shell_triangle_edges_, {x[a], x[b]}, edges);
+      edges_near(shell_tree, shell_triangle_edges_, {x[a], x[b]}, 0, edges);
       for (const unsigned f : edges)
       {
         if (f <= e || !self_edge_pair_allowed(e, f))

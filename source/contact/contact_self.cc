@@ -45,8 +45,7 @@ namespace coshell::contact
     for (const unsigned v : shell_vertices_)
     {
       hits.clear();
-      tree.query(bgi::intersects(BoundingBox<3>({X[v], X[v]})),
-                 std::back_inserter(hits));
+      tree.query(bgi::intersects(box_of({X[v]}, 0)), std::back_inserter(hits));
       for (const auto &hit : hits)
       {
         const auto &t = shell_triangles_[hit.second];
@@ -80,7 +79,7 @@ namespace coshell::contact
     for (unsigned int e = 0; e < shell_edges_.size(); ++e)
     {
       const auto [a, b] = shell_edges_[e];
-      edges_near(tree, shell_triangle_edges_, {X[a], X[b]}, near);
+      edges_near(tree, shell_triangle_edges_, {X[a], X[b]}, 0, near);
       for (const unsigned f : near)
       {
         const auto [c, d] = shell_edges_[f];
@@ -121,7 +120,7 @@ namespace coshell::contact
     {
       const auto [a, b] = shell_edges_[e];
       edges_near(swept_shell_tree, shell_triangle_edges_,
-                 {x[a], x[b], x[a] + dx[a], x[b] + dx[b]}, edges);
+                 {x[a], x[b], x[a] + dx[a], x[b] + dx[b]}, 0, edges);
       for (const unsigned f : edges)
       {
         if (f <= e || !self_edge_pair_allowed(e, f))
@@ -162,8 +161,7 @@ namespace coshell::contact
     for (const unsigned v : shell_vertices_)
     {
       hits.clear();
-      swept_shell_tree.query(bgi::intersects(BoundingBox<3>(
-                                 std::vector<Point<3>>{x[v], x[v] + dx[v]})),
+      swept_shell_tree.query(bgi::intersects(box_of({x[v], x[v] + dx[v]}, 0)),
                              std::back_inserter(hits));
       for (const auto &hit : hits)
       {
@@ -196,8 +194,7 @@ namespace coshell::contact
     for (const unsigned v : shell_vertices_)
     {
       hits.clear();
-      tree.query(bgi::intersects(BoundingBox<3>({x[v], x[v]})),
-                 std::back_inserter(hits));
+      tree.query(bgi::intersects(box_of({x[v]}, 0)), std::back_inserter(hits));
       for (const auto &hit : hits)
         if (self_pair_allowed(v, hit.second))
           for (const unsigned w : shell_triangles_[hit.second])
@@ -216,7 +213,7 @@ namespace coshell::contact
     for (unsigned int e = 0; e < shell_edges_.size(); ++e)
     {
       edges_near(tree, shell_triangle_edges_,
-                 {x[shell_edges_[e][0]], x[shell_edges_[e][1]]}, edges);
+                 {x[shell_edges_[e][0]], x[shell_edges_[e][1]]}, 0, edges);
       for (const unsigned f : edges)
         if (f > e && self_edge_pair_allowed(e, f))
           for (const unsigned v : shell_edges_[e])

@@ -331,12 +331,16 @@ namespace coshell::model
 
   void ShellProblem::begin_trial()
   {
+    trial_start_.emplace(state_);
     for (const auto &contribution : contributions_)
       contribution->begin_trial();
   }
 
   void ShellProblem::end_trial()
   {
+    if (trial_start_)
+      state_ = *trial_start_;
+    trial_start_.reset();
     for (const auto &contribution : contributions_)
       contribution->end_trial();
   }

@@ -11,8 +11,10 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/numerics/rtree.h>
 
+#include <initializer_list>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -270,6 +272,25 @@ namespace coshell::contact
     bool                                       retrying_ = false;
     std::vector<std::vector<dealii::Point<3>>> trial_current_;
     bool                                       trial_pending_ = false;
+    /// What prepare() found at the last trial evaluation (line search).
+    /// Its pairs and obstacle advance depend on nothing but the shell's
+    /// positions, the target time and the obstacles' positions before the
+    /// advance; when Newton then moves the shell to exactly the trial's
+    /// shape (the accepted trial), prepare() takes them from here instead
+    /// of searching again.
+    struct Detection
+    {
+      std::vector<dealii::Point<3>>              positions;
+      double                                     target_time = 0;
+      std::vector<std::vector<dealii::Point<3>>> obstacles_before;
+      std::vector<std::vector<dealii::Point<3>>> obstacles_after;
+      std::vector<Tree> trees_after; ///< of the obstacles that moved
+      bool              pending = false;
+      std::vector<Pair> pairs;
+    };
+    std::optional<Detection> trial_detection_;
+    /// Takes the trial's detection if its inputs are the present ones.
+    bool reuse_trial_detection();
 
     /// Half the thickness of the pair's shell vertex, triangle or edge
     /// plus the obstacle's offset: the distance the pair must keep.
@@ -298,11 +319,12 @@ namespace coshell::contact
                          PairSelector                        &selector);
     /// The edges (by 'triangle_edges', the obstacle's or the shell's) of
     /// the triangles in 'tree' whose boxes meet the box of 'corners'
-    /// (sorted, each once).
+    /// inflated by 'inflation' (sorted, each once).
     static void
     edges_near(const Tree                                 &tree,
                const std::vector<std::array<unsigned, 3>> &triangle_edges,
-               const std::vector<dealii::Point<3>>        &corners,
+               std::initializer_list<dealii::Point<3>>     corners,
+               double                                      inflation,
                std::vector<unsigned int>                  &edges);
     /// Self contact of edges e and f: the mean of their half thicknesses,
     /// and whether they may pair (no shared vertex, not excluded).
@@ -360,6 +382,20 @@ namespace coshell::contact
     std::vector<std::vector<unsigned int>> excluded_;
     unsigned int                           self_active_pairs_ = 0;
     double                                 reach(unsigned int obstacle) const;
+    /// The distance within which a pair that must keep 'offset' has a
+    /// force: offset plus the barrier's activation distance (the offset
+    /// alone for the penalty). A pair is looked for within its own reach,
+    /// not the obstacle's largest: the thin rim of a lens searches a
+    /// smaller box than its thick centre.
+    double pair_reach(double offset) const;
+    /// The box of 'points', inflated, made without the heap.
+    static dealii::BoundingBox<3>
+    box_of(std::initializer_list<dealii::Point<3>> points, double inflation);
+    /// The box of the shell's vertices at x and x + dx, inflated by
+    /// max_reach() (holds every box of shell_triangle_tree(x, dx, ...)).
+    dealii::BoundingBox<3>
+    swept_shell_box(const std::vector<dealii::Point<3>>     &x,
+                    const std::vector<dealii::Tensor<1, 3>> *dx) const;
     std::vector<dealii::Point<3>>
            shell_positions(const model::ShellState &state) const;
     void   rebuild_tree(unsigned int obstacle);

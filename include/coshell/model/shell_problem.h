@@ -11,6 +11,7 @@
 #include <array>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -116,8 +117,12 @@ namespace coshell::model
     const dealii::Vector<double> &force(ForceKind kind) const;
 
   private:
-    const ShellModel                          &model_;
-    ShellState                                &state_;
+    const ShellModel &model_;
+    ShellState       &state_;
+    /// The iterate at begin_trial(), put back exactly by end_trial() (an
+    /// opposite increment leaves round-off, which would keep contact from
+    /// recognising the trial's shape when Newton moves there).
+    std::optional<ShellState>                  trial_start_;
     dealii::AffineConstraints<double>          constraints_, homogeneous_;
     std::vector<std::unique_ptr<Contribution>> contributions_;
     PrescribedIncrementFunction                prescribed_;

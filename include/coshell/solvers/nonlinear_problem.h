@@ -66,6 +66,8 @@ namespace coshell::solvers
     /// Around an evaluation at a trial iterate that will be undone (the
     /// line search): end_trial() puts back what that evaluation changed
     /// besides the iterate, e.g. obstacles moved against the trial shape.
+    /// The caller undoes the trial increment itself; an implementation
+    /// may also put the iterate back exactly (no round-off).
     virtual void begin_trial() {}
     virtual void end_trial() {}
 
