@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <set>
 
 namespace coshell::contact
@@ -69,13 +70,17 @@ namespace coshell::contact
       return shared == size_a && size_a < size_b;
     }
 
-    /// Keeps a candidate only where its distance is a local minimum over
-    /// the surface: not if a feature it bounds is as close or closer (a
-    /// vertex over the middle of a flat face is also within reach of the
-    /// face's edges and of the neighbouring triangles' shared edge; only
-    /// the face counts, so a frictionless plane pushes only along its
-    /// normal).
-    std::vector<bool> local_minima(const std::vector<Candidate> &candidates)
+    /// Keeps a candidate only where its gap is a local minimum over the
+    /// surface: not if a feature it bounds has as small a gap or smaller
+    /// (a vertex over the middle of a flat face is also within reach of
+    /// the face's edges and of the neighbouring triangles' shared edge;
+    /// only the face counts, so a frictionless plane pushes only along
+    /// its normal). By gap, not distance: where triangles of different
+    /// thickness meet, the nearer feature may keep the larger gap, and the
+    /// candidate dropped must not be one the collision filter stops at
+    /// while no listed pair pushes back.
+    std::vector<bool> local_minima(const std::vector<Candidate> &candidates,
+                                   const std::vector<double>    &gaps)
     {
       std::vector<bool> keep(candidates.size(), true);
       for (unsigned int i = 0; i < candidates.size(); ++i)
@@ -84,7 +89,7 @@ namespace coshell::contact
           const auto &a = candidates[i], &b = candidates[j];
           const auto &fa = a.shell_side_varies ? a.shell : a.obstacle;
           const auto &fb = b.shell_side_varies ? b.shell : b.obstacle;
-          if (proper_part(fa, fb) && b.distance <= a.distance)
+          if (proper_part(fa, fb) && gaps[j] <= gaps[i])
             keep[i] = false;
         }
       return keep;
@@ -107,34 +112,59 @@ namespace coshell::contact
     }
     void settle()
     {
-      const std::vector<bool> keep =
+      std::vector<double> gaps(candidates_.size());
+      for (unsigned int k = 0; k < candidates_.size(); ++k)
+        gaps[k] = candidates_[k].distance - contact_.offset(found_[k]);
+      std::vector<bool> keep =
           contact_.parameters_.local_minima_only
-              ? local_minima(candidates_)
+              ? local_minima(candidates_, gaps)
               : std::vector<bool>(candidates_.size(), true);
+      // Of the candidates with the same closest features, the one with
+      // the smallest gap (the first of equals): triangles of different
+      // thickness may share the feature.
+      std::map<Key, unsigned int> smallest;
+      for (unsigned int k = 0; k < candidates_.size(); ++k)
+        if (keep[k] && candidates_[k].listed)
+        {
+          const auto [it, added] = smallest.emplace(key(k), k);
+          if (!added && gaps[k] < gaps[it->second])
+            it->second = k;
+        }
       for (unsigned int k = 0; k < candidates_.size(); ++k)
       {
-        const auto &c        = candidates_[k];
-        const long  obstacle = found_[k].self ? -1 : long(found_[k].obstacle);
-        const std::array<long, 7> key = {
-            obstacle,      c.shell[0],    c.shell[1],   c.shell[2],
-            c.obstacle[0], c.obstacle[1], c.obstacle[2]};
-        if (!keep[k] || !c.listed || !seen_.insert(key).second)
+        if (!keep[k] || !candidates_[k].listed || smallest.at(key(k)) != k ||
+            !seen_.insert(key(k)).second)
           continue;
         contact_.pairs_.push_back(found_[k]);
-        const double gap       = c.distance - contact_.offset(found_[k]);
-        contact_.smallest_gap_ = std::min(contact_.smallest_gap_, gap);
+        contact_.smallest_gap_ = std::min(contact_.smallest_gap_, gaps[k]);
         contact_.largest_penetration_ =
-            std::max(contact_.largest_penetration_, -gap);
+            std::max(contact_.largest_penetration_, -gaps[k]);
       }
       candidates_.clear();
       found_.clear();
     }
 
   private:
-    Contact                      &contact_;
-    std::set<std::array<long, 7>> seen_;
-    std::vector<Candidate>        candidates_;
-    std::vector<Pair>             found_;
+    /// Obstacle (-1: self), which side's vertex is the pair's point, and
+    /// the closest features of both sides.
+    using Key = std::array<long, 8>;
+    Key key(unsigned int k) const
+    {
+      const auto &c = candidates_[k];
+      const Pair &p = found_[k];
+      return {p.self ? -1 : long(p.obstacle),
+              long(p.shell_vertex_side),
+              c.shell[0],
+              c.shell[1],
+              c.shell[2],
+              c.obstacle[0],
+              c.obstacle[1],
+              c.obstacle[2]};
+    }
+    Contact               &contact_;
+    std::set<Key>          seen_;
+    std::vector<Candidate> candidates_;
+    std::vector<Pair>      found_;
   };
 
   void Contact::find_pairs(const std::vector<Point<3>> &x,
@@ -237,11 +267,14 @@ namespace coshell::contact
         const auto &t = shell_triangles_[hit.second];
         const auto  d =
             point_triangle_distance(X[j], x[t[0]], x[t[1]], x[t[2]], false);
-        // A shell vertex against an obstacle vertex is the shell vertex
-        // search's pair (with the vertex's thickness), listed there when
-        // within that vertex's reach and without force beyond it; here it
+        // A shell vertex against an obstacle vertex is also the shell
+        // vertex search's pair, with the vertex's thickness (the mean of
+        // its triangles'). Where this triangle keeps the larger offset it
+        // binds first (the filter stops at it) and is listed too; else it
         // only witnesses for the local minima.
-        const bool vertex_vertex = d.feature < 3;
+        const bool vertex_vertex =
+            d.feature < 3 &&
+            offset(o, false, hit.second) <= offset(o, true, t[d.feature]);
         if (std::sqrt(d.value) < reach(o))
           selector.add(
               {feature_vertices(t, d.feature),

@@ -43,6 +43,15 @@ namespace coshell::solvers
     prm.declare_entry("Increment tolerance", "1e-8", Patterns::Double(0),
                       "Dimensionless: |du| <= tol |sum of corrections in the "
                       "step|.");
+    prm.declare_entry(
+        "Correction tolerance", "0", Patterns::Double(0),
+        "Length (translations) and rad (rotations); 0 = not used. Newton "
+        "has also converged when the largest entry of its correction, "
+        "before the collision filter and the line search shorten it, is at "
+        "most this: the distance Newton still expects to move (the "
+        "criterion of Li et al. 2020, IPC, on the step's displacement). "
+        "Where a stiff barrier leaves the residual converging slowly, this "
+        "stops at a stated accuracy of the configuration.");
     prm.declare_entry("Line search", "false", Patterns::Bool(),
                       "Scale each Newton correction du by s so that "
                       "|du.r(s du)| <= 0.8 |du.r(0)| (secant steps on the "
@@ -56,12 +65,13 @@ namespace coshell::solvers
 
   void NewtonParameters::parse_parameters(ParameterHandler &prm)
   {
-    max_iterations      = prm.get_integer("Maximum iterations");
-    residual_tolerance  = prm.get_double("Residual tolerance");
-    energy_tolerance    = prm.get_double("Energy tolerance");
-    increment_tolerance = prm.get_double("Increment tolerance");
-    line_search         = prm.get_bool("Line search");
-    divergence_limit    = prm.get_double("Divergence limit");
+    max_iterations       = prm.get_integer("Maximum iterations");
+    residual_tolerance   = prm.get_double("Residual tolerance");
+    energy_tolerance     = prm.get_double("Energy tolerance");
+    increment_tolerance  = prm.get_double("Increment tolerance");
+    correction_tolerance = prm.get_double("Correction tolerance");
+    line_search          = prm.get_bool("Line search");
+    divergence_limit     = prm.get_double("Divergence limit");
   }
 
   Newton::Newton(const NewtonParameters &parameters,
@@ -164,6 +174,9 @@ namespace coshell::solvers
       const double   energy = std::abs(du * residual);
       if (iteration == 0)
         first_energy = std::max(energy, 1e-300);
+      const bool direction_small =
+          parameters_.correction_tolerance > 0 &&
+          du.linfty_norm() <= parameters_.correction_tolerance;
       // The step filter comes first, so that the line search only tries
       // admissible (e.g. collision-free) configurations.
       const double fraction = problem.admissible_fraction(du);
@@ -177,9 +190,10 @@ namespace coshell::solvers
         observer({iteration, relative_residual, du.l2_norm(),
                   energy / first_energy});
       correction_small =
-          energy <= parameters_.energy_tolerance * first_energy &&
-          du.l2_norm() <= parameters_.increment_tolerance *
-                              std::max(step_increment.l2_norm(), 1e-300);
+          direction_small ||
+          (energy <= parameters_.energy_tolerance * first_energy &&
+           du.l2_norm() <= parameters_.increment_tolerance *
+                               std::max(step_increment.l2_norm(), 1e-300));
     }
   }
 

@@ -30,7 +30,10 @@ namespace coshell::solvers
     double       residual_tolerance  = 1e-7;
     double       energy_tolerance    = 1e-16;
     double       increment_tolerance = 1e-8;
-    bool         line_search         = false;
+    /// Largest entry of the Newton correction that counts as converged
+    /// (0: not used).
+    double correction_tolerance = 0;
+    bool   line_search          = false;
     /// |r| / scale above this counts as divergence.
     double divergence_limit = 1e8;
 
