@@ -23,6 +23,42 @@ namespace coshell::solvers
       return std::all_of(v.begin(), v.end(),
                          [](double x) { return std::isfinite(x); });
     }
+
+    /// The smallest scale the line search takes.
+    constexpr double smallest_line_search_scale = 0.1;
+
+    /// What the last corrections of a failing attempt looked like: cut to
+    /// the line search's floor, and climbing the energy (du.r < 0, the
+    /// tangent indefinite along du). Their signature tells an indefinite
+    /// tangent from a slow one in the failure message.
+    class CorrectionRecord
+    {
+    public:
+      void add(bool at_floor, bool climbing)
+      {
+        records_.push_back({at_floor, climbing});
+      }
+      std::string summary() const
+      {
+        const unsigned int n = std::min<std::size_t>(records_.size(), 10);
+        unsigned int       at_floor = 0, climbing = 0;
+        for (auto it = records_.end() - n; it != records_.end(); ++it)
+        {
+          at_floor += it->first;
+          climbing += it->second;
+        }
+        if (at_floor == 0 && climbing == 0)
+          return "";
+        return "; of the last " + std::to_string(n) + " corrections " +
+               std::to_string(climbing) +
+               " climbed the energy (du.r < 0: an indefinite tangent) "
+               "and the line search cut " +
+               std::to_string(at_floor) + " to a tenth";
+      }
+
+    private:
+      std::vector<std::pair<bool, bool>> records_;
+    };
   } // namespace
 
   void NewtonParameters::declare_parameters(ParameterHandler &prm)
@@ -124,7 +160,8 @@ namespace coshell::solvers
       const double secant = a_low + (a - a_low) * s_low / (s_low - slope);
       a_low               = a;
       s_low               = slope;
-      a = std::clamp(std::isfinite(secant) ? secant : 1.0, 0.1, 1.0);
+      a                   = std::clamp(std::isfinite(secant) ? secant : 1.0,
+                     smallest_line_search_scale, 1.0);
     }
     return a;
   }
@@ -138,6 +175,7 @@ namespace coshell::solvers
     Vector<double>       step_increment(residual.size());
     double               first_energy     = 0;
     bool                 correction_small = false;
+    CorrectionRecord     corrections;
     for (unsigned int iteration = 0;; ++iteration)
     {
       problem.evaluate(residual, &tangent);
@@ -165,7 +203,7 @@ namespace coshell::solvers
             "Newton did not converge in " +
             std::to_string(parameters_.max_iterations) +
             " iterations (relative residual " +
-            short_number(relative_residual) + ")" +
+            short_number(relative_residual) + corrections.summary() + ")" +
             (pending ? "; a prescribed move is still pending: an obstacle "
                        "or a prescribed motion cannot reach its position "
                        "(the shell is in its way: a jam)"
@@ -182,8 +220,11 @@ namespace coshell::solvers
       const double fraction = problem.admissible_fraction(du);
       if (fraction < 1)
         du *= fraction;
+      const bool climbing = du * residual < 0;
+      double     scale    = 1;
       if (parameters_.line_search)
-        du *= line_search_scale(problem, residual, du);
+        du *= (scale = line_search_scale(problem, residual, du));
+      corrections.add(scale <= smallest_line_search_scale, climbing);
       problem.apply_increment(du);
       step_increment += du;
       if (observer)

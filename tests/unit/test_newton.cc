@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 #include <vector>
 
 namespace
@@ -234,6 +235,32 @@ TEST(Newton, LineSearchLeavesTheIterateUnchangedBetweenTrials)
   Newton newton(parameters, umfpack());
   newton.solve(problem);
   EXPECT_NEAR(problem.x()[0], cubic_root(50.0, 1.0), 1e-9);
+}
+
+TEST(Newton, FailureMessageNamesAnIndefiniteTangent)
+{
+  // A softening spring, f = x - x^3, carries at most 2 / sqrt(27) = 0.385:
+  // under a load of 1 there is no equilibrium, and past x = 1 / sqrt(3)
+  // the tangent 1 - 3 x^2 is negative, so Newton's corrections climb the
+  // energy; the failure message says so.
+  CubicSprings     problem({1.0}, -1.0);
+  NewtonParameters parameters;
+  parameters.line_search    = true;
+  parameters.max_iterations = 12;
+  Newton newton(parameters, umfpack());
+  try
+  {
+    newton.solve(problem);
+    FAIL() << "Newton converged where there is no equilibrium";
+  }
+  catch (const NewtonFailure &failure)
+  {
+    const std::string message = failure.what();
+    EXPECT_NE(message.find("did not converge in 12 iterations"),
+              std::string::npos)
+        << message;
+    EXPECT_NE(message.find("climbed the energy"), std::string::npos) << message;
+  }
 }
 
 TEST(StepController, CutsGrowsAndGivesUp)
