@@ -136,6 +136,13 @@ set(thin_strip contact/thin_strip_squeeze.prm)
 coshell_contact_test(contact.hard.thin_strip_squeezed ${thin_strip}
   ARGS --set ${no_vtu} --reaction fz -0.01 1e-6 --gap-nonnegative
   --force-range 2 fz 1 100)
+# The rod pushed on until the room it leaves (0.99 h) is thinner than the
+# strip (a jam): the failure names the two obstacles that pinch the strip
+# and the vertex.
+coshell_bad_input_test(contact_shell_pinched "the shell is pinched between obstacles 'plane' and 'rod' at vertex"
+  ${COSHELL_PRM}/${thin_strip} --set ${no_vtu}
+  --set "Contact/Obstacle 2/Translation=5$<SEMICOLON> 0$<SEMICOLON> 0.52 - 0.0156 * t"
+  --set "Nonlinear solver/Maximum step cuts=3")
 coshell_contact_test(contact.hard.grazing ${thin_strip}
   ARGS --set ${no_vtu} --set "Nonlinear solver/Load steps=50"
   --set "Contact/Obstacle 2/Translation=1 + 8*max(0, (t - 0.2)/0.8)$<SEMICOLON> 0$<SEMICOLON> 0.52 - 0.014*min(1, t/0.2)"

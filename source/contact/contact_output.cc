@@ -4,6 +4,9 @@
 #include <cmath>
 #include <fstream>
 #include <iomanip>
+#include <limits>
+#include <map>
+#include <sstream>
 #include <stdexcept>
 
 namespace coshell::contact
@@ -156,5 +159,74 @@ namespace coshell::contact
   bool ContactContribution::symmetric_tangent() const
   {
     return true;
+  }
+
+  std::string ContactContribution::failure_context() const
+  {
+    return contact_.squeeze_report();
+  }
+
+  /// The shell vertex a pair's gap is charged to: its point, or the first
+  /// vertex of its shell triangle or edge.
+  unsigned int Contact::pair_shell_vertex(const Pair &pair) const
+  {
+    if (pair.edge_edge)
+      return shell_edges_[pair.shell][0];
+    return pair.shell_vertex_side ? pair.shell
+                                  : shell_triangles_[pair.shell][0];
+  }
+
+  std::string Contact::squeeze_report() const
+  {
+    // The smallest gap of every shell vertex to every obstacle.
+    std::map<unsigned int, std::map<unsigned int, double>> gaps;
+    for (const Pair &pair : pairs_)
+    {
+      if (pair.self)
+        continue;
+      const auto   points = pair_points(pair, positions_, other_side(pair));
+      const double gap =
+          std::sqrt(pair_distance(pair, points, false).value) - offset(pair);
+      auto [it, added] =
+          gaps[pair_shell_vertex(pair)].emplace(pair.obstacle, gap);
+      if (!added)
+        it->second = std::min(it->second, gap);
+    }
+    struct Squeeze
+    {
+      double       worse_gap = std::numeric_limits<double>::infinity();
+      unsigned int vertex = 0, first = 0, second = 0;
+      double       first_gap = 0, second_gap = 0;
+    } squeeze, nearest;
+    for (const auto &[vertex, by_obstacle] : gaps)
+      for (const auto &[o, gap] : by_obstacle)
+      {
+        if (gap < nearest.worse_gap)
+          nearest = {gap, vertex, o, o, gap, gap};
+        for (const auto &[other, other_gap] : by_obstacle)
+          if (other > o && std::max(gap, other_gap) < activation_ &&
+              std::max(gap, other_gap) < squeeze.worse_gap)
+            squeeze = {
+                std::max(gap, other_gap), vertex, o, other, gap, other_gap};
+      }
+    if (!std::isfinite(nearest.worse_gap))
+      return "";
+    const bool  pinched = std::isfinite(squeeze.worse_gap);
+    const auto &where   = positions_[pinched ? squeeze.vertex : nearest.vertex];
+    const auto &name    = [this](unsigned int o)
+    { return "'" + parameters_.obstacles[o].name + "'"; };
+    std::ostringstream out;
+    out << std::setprecision(3);
+    if (pinched)
+      out << "; the shell is pinched between obstacles " << name(squeeze.first)
+          << " and " << name(squeeze.second) << " at vertex " << squeeze.vertex
+          << " (" << where << "), gaps " << squeeze.first_gap << " and "
+          << squeeze.second_gap
+          << " (length units): a jam, they leave it no room to move";
+    else
+      out << "; the smallest gap, " << nearest.first_gap
+          << " (length units), is between shell vertex " << nearest.vertex
+          << " (" << where << ") and obstacle " << name(nearest.first);
+    return out.str();
   }
 } // namespace coshell::contact

@@ -353,6 +353,14 @@ namespace coshell::model
     return true;
   }
 
+  std::string ShellProblem::failure_context() const
+  {
+    std::string context;
+    for (const auto &contribution : contributions_)
+      context += contribution->failure_context();
+    return context;
+  }
+
   void ShellProblem::set_path_parameter(double s)
   {
     time_        = schedule_.start_time + s * schedule_.duration;

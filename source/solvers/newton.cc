@@ -187,7 +187,8 @@ namespace coshell::solvers
       if (!std::isfinite(residual.l2_norm()) ||
           (!pending && relative_residual > parameters_.divergence_limit))
         throw NewtonFailure("Newton diverged (relative residual " +
-                            short_number(relative_residual) + ")");
+                            short_number(relative_residual) + ")" +
+                            problem.failure_context());
       // Converged when the residual is small, or when the last correction
       // has dropped to round-off in both norm and energy: very stiff
       // membranes leave a round-off floor in the residual.
@@ -207,7 +208,8 @@ namespace coshell::solvers
             (pending ? "; a prescribed move is still pending: an obstacle "
                        "or a prescribed motion cannot reach its position "
                        "(the shell is in its way: a jam)"
-                     : ""));
+                     : "") +
+            problem.failure_context());
       Vector<double> du     = correction(problem, tangent, residual);
       const double   energy = std::abs(du * residual);
       if (iteration == 0)

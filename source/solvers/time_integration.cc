@@ -161,6 +161,10 @@ namespace coshell::solvers
       {
         return problem_.symmetric_tangent();
       }
+      std::string failure_context() const override
+      {
+        return problem_.failure_context();
+      }
       void update_rates()
       {
         problem_.step_increment(q_);

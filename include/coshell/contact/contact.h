@@ -164,8 +164,13 @@ namespace coshell::contact
     /// distance) and the contact pressure |f| / area (ry slot).
     dealii::Vector<double> vertex_fields() const;
     /// Writes the obstacles at their current positions as one VTU file.
-    void   write_obstacles_vtu(const std::string &file) const;
-    double barrier_stiffness() const;
+    void write_obstacles_vtu(const std::string &file) const;
+    /// For a failed solve's message, from the pairs of the last
+    /// evaluation: the shell vertex squeezed hardest between two
+    /// obstacles (both gaps below the activation distance), or else the
+    /// smallest gap and its obstacle; "" without pairs.
+    std::string squeeze_report() const;
+    double      barrier_stiffness() const;
     /// Wall-clock seconds so far: pair detection (and obstacle moves),
     /// pair forces and stiffness, collision filter of the corrections.
     struct Timing
@@ -378,6 +383,8 @@ namespace coshell::contact
     void exclude_reference_neighbours();
     /// The positions the pair's other side takes its points from.
     const std::vector<dealii::Point<3>> &other_side(const Pair &pair) const;
+    /// The shell vertex a pair's gap is charged to (diagnostics).
+    unsigned int pair_shell_vertex(const Pair &pair) const;
     /// Per shell vertex, the sorted triangles it does not pair with.
     std::vector<std::vector<unsigned int>> excluded_;
     unsigned int                           self_active_pairs_ = 0;
@@ -480,11 +487,12 @@ namespace coshell::contact
     double admissible_fraction(
         const model::ShellState      &state,
         const dealii::Vector<double> &correction) const override;
-    void save() override;
-    void restore() override;
-    void begin_trial() override;
-    void end_trial() override;
-    bool symmetric_tangent() const override;
+    void        save() override;
+    void        restore() override;
+    void        begin_trial() override;
+    void        end_trial() override;
+    bool        symmetric_tangent() const override;
+    std::string failure_context() const override;
 
   private:
     Contact &contact_;

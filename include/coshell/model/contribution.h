@@ -8,6 +8,7 @@
 
 #include <array>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include <string>
@@ -133,5 +134,11 @@ namespace coshell::model
     virtual void end_trial() {}
 
     virtual bool symmetric_tangent() const = 0;
+    /// What a failed solve's message should add about this contribution
+    /// (e.g. a shell pinched between obstacles); "" if nothing.
+    virtual std::string failure_context() const
+    {
+      return "";
+    }
   };
 } // namespace coshell::model

@@ -67,11 +67,12 @@ namespace coshell::model
     void   apply_increment(const dealii::Vector<double> &correction) override;
     double admissible_fraction(
         const dealii::Vector<double> &correction) const override;
-    void save() override;
-    void restore() override;
-    void begin_trial() override;
-    void end_trial() override;
-    bool symmetric_tangent() const override;
+    void        save() override;
+    void        restore() override;
+    void        begin_trial() override;
+    void        end_trial() override;
+    bool        symmetric_tangent() const override;
+    std::string failure_context() const override;
 
     // solvers::EvolutionProblem
     void set_path_parameter(double s) override;

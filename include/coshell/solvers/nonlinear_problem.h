@@ -4,6 +4,8 @@
 #include <deal.II/lac/sparsity_pattern.h>
 #include <deal.II/lac/vector.h>
 
+#include <string>
+
 namespace coshell::solvers
 {
   /// What a Newton solver needs of a nonlinear system r(x) = 0 whose
@@ -73,6 +75,14 @@ namespace coshell::solvers
 
     /// Whether the tangent is symmetric (lets a Cholesky solver be used).
     virtual bool symmetric_tangent() const = 0;
+
+    /// Where a failed solve left the problem, in words for the failure
+    /// message (e.g. "; the shell is pinched between ..."); "" if there is
+    /// nothing to add.
+    virtual std::string failure_context() const
+    {
+      return "";
+    }
   };
 } // namespace coshell::solvers
 
