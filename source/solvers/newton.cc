@@ -49,11 +49,17 @@ namespace coshell::solvers
         }
         if (at_floor == 0 && climbing == 0)
           return "";
+        const std::string climbed =
+            climbing == 0 ? ""
+                          : std::to_string(climbing) +
+                                " climbed the energy (du.r < 0: the tangent "
+                                "is indefinite along them)";
+        const std::string cut = at_floor == 0 ? ""
+                                              : "the line search cut " +
+                                                    std::to_string(at_floor) +
+                                                    " to a tenth";
         return "; of the last " + std::to_string(n) + " corrections " +
-               std::to_string(climbing) +
-               " climbed the energy (du.r < 0: an indefinite tangent) "
-               "and the line search cut " +
-               std::to_string(at_floor) + " to a tenth";
+               climbed + (climbing && at_floor ? " and " : "") + cut;
       }
 
     private:
