@@ -198,13 +198,16 @@ namespace coshell::contact
       unsigned int vertex = 0, first = 0, second = 0;
       double       first_gap = 0, second_gap = 0;
     } squeeze, nearest;
+    // Squeezed: both gaps below a tenth of the activation distance, where
+    // the barrier pushes with many times its force at half of it.
+    const double squeezed = 0.1 * activation_;
     for (const auto &[vertex, by_obstacle] : gaps)
       for (const auto &[o, gap] : by_obstacle)
       {
         if (gap < nearest.worse_gap)
           nearest = {gap, vertex, o, o, gap, gap};
         for (const auto &[other, other_gap] : by_obstacle)
-          if (other > o && std::max(gap, other_gap) < activation_ &&
+          if (other > o && std::max(gap, other_gap) < squeezed &&
               std::max(gap, other_gap) < squeeze.worse_gap)
             squeeze = {
                 std::max(gap, other_gap), vertex, o, other, gap, other_gap};

@@ -167,7 +167,8 @@ namespace coshell::contact
     void write_obstacles_vtu(const std::string &file) const;
     /// For a failed solve's message, from the pairs of the last
     /// evaluation: the shell vertex squeezed hardest between two
-    /// obstacles (both gaps below the activation distance), or else the
+    /// obstacles (both gaps below a tenth of the activation distance), or
+    /// else the
     /// smallest gap and its obstacle; "" without pairs.
     std::string squeeze_report() const;
     double      barrier_stiffness() const;

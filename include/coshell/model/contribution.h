@@ -8,7 +8,6 @@
 
 #include <array>
 #include <functional>
-#include <string>
 #include <vector>
 
 #include <string>
