@@ -8,6 +8,7 @@
 #include <map>
 #include <sstream>
 #include <stdexcept>
+#include <tuple>
 
 namespace coshell::contact
 {
@@ -176,9 +177,9 @@ namespace coshell::contact
                                   : shell_triangles_[pair.shell][0];
   }
 
-  std::string Contact::squeeze_report() const
+  std::map<unsigned int, std::map<unsigned int, double>>
+  Contact::obstacle_gaps_by_vertex() const
   {
-    // The smallest gap of every shell vertex to every obstacle.
     std::map<unsigned int, std::map<unsigned int, double>> gaps;
     for (const Pair &pair : pairs_)
     {
@@ -192,44 +193,54 @@ namespace coshell::contact
       if (!added)
         it->second = std::min(it->second, gap);
     }
-    struct Squeeze
-    {
-      double       worse_gap = std::numeric_limits<double>::infinity();
-      unsigned int vertex = 0, first = 0, second = 0;
-      double       first_gap = 0, second_gap = 0;
-    } squeeze, nearest;
+    return gaps;
+  }
+
+  std::string Contact::squeeze_report() const
+  {
+    constexpr double infinity = std::numeric_limits<double>::infinity();
     // Squeezed: both gaps below a tenth of the activation distance, where
     // the barrier pushes with many times its force at half of it.
-    const double squeezed = 0.1 * activation_;
-    for (const auto &[vertex, by_obstacle] : gaps)
+    const double squeezed    = 0.1 * activation_;
+    double       nearest_gap = infinity, pinch_gap = infinity;
+    unsigned int nearest_vertex = 0, nearest_obstacle = 0, pinch_vertex = 0;
+    std::array<unsigned int, 2> pinch_obstacles{};
+    std::array<double, 2>       pinch_gaps{};
+    for (const auto &[vertex, by_obstacle] : obstacle_gaps_by_vertex())
       for (const auto &[o, gap] : by_obstacle)
       {
-        if (gap < nearest.worse_gap)
-          nearest = {gap, vertex, o, o, gap, gap};
+        if (gap < nearest_gap)
+          std::tie(nearest_gap, nearest_vertex, nearest_obstacle) =
+              std::tuple(gap, vertex, o);
         for (const auto &[other, other_gap] : by_obstacle)
-          if (other > o && std::max(gap, other_gap) < squeezed &&
-              std::max(gap, other_gap) < squeeze.worse_gap)
-            squeeze = {
-                std::max(gap, other_gap), vertex, o, other, gap, other_gap};
+        {
+          const double larger = std::max(gap, other_gap);
+          if (other > o && larger < squeezed && larger < pinch_gap)
+          {
+            pinch_gap       = larger;
+            pinch_vertex    = vertex;
+            pinch_obstacles = {o, other};
+            pinch_gaps      = {gap, other_gap};
+          }
+        }
       }
-    if (!std::isfinite(nearest.worse_gap))
+    if (nearest_gap == infinity)
       return "";
-    const bool  pinched = std::isfinite(squeeze.worse_gap);
-    const auto &where   = positions_[pinched ? squeeze.vertex : nearest.vertex];
-    const auto &name    = [this](unsigned int o)
+    const auto name = [this](unsigned int o)
     { return "'" + parameters_.obstacles[o].name + "'"; };
     std::ostringstream out;
     out << std::setprecision(3);
-    if (pinched)
-      out << "; the shell is pinched between obstacles " << name(squeeze.first)
-          << " and " << name(squeeze.second) << " at vertex " << squeeze.vertex
-          << " (" << where << "), gaps " << squeeze.first_gap << " and "
-          << squeeze.second_gap
+    if (pinch_gap < infinity)
+      out << "; the shell is pinched between obstacles "
+          << name(pinch_obstacles[0]) << " and " << name(pinch_obstacles[1])
+          << " at vertex " << pinch_vertex << " (" << positions_[pinch_vertex]
+          << "), gaps " << pinch_gaps[0] << " and " << pinch_gaps[1]
           << " (length units): a jam, they leave it no room to move";
     else
-      out << "; the smallest gap, " << nearest.first_gap
-          << " (length units), is between shell vertex " << nearest.vertex
-          << " (" << where << ") and obstacle " << name(nearest.first);
+      out << "; the smallest gap, " << nearest_gap
+          << " (length units), is between shell vertex " << nearest_vertex
+          << " (" << positions_[nearest_vertex] << ") and obstacle "
+          << name(nearest_obstacle);
     return out.str();
   }
 } // namespace coshell::contact

@@ -216,8 +216,10 @@ namespace coshell::solvers
                        "(the shell is in its way: a jam)"
                      : "") +
             problem.failure_context());
-      Vector<double> du     = correction(problem, tangent, residual);
-      const double   energy = std::abs(du * residual);
+      Vector<double> du = correction(problem, tangent, residual);
+      // The energy slope along du; negative: du climbs the energy.
+      const double slope  = du * residual;
+      const double energy = std::abs(slope);
       if (iteration == 0)
         first_energy = std::max(energy, 1e-300);
       const bool direction_small =
@@ -228,11 +230,10 @@ namespace coshell::solvers
       const double fraction = problem.admissible_fraction(du);
       if (fraction < 1)
         du *= fraction;
-      const bool climbing = du * residual < 0;
-      double     scale    = 1;
+      double scale = 1;
       if (parameters_.line_search)
         du *= (scale = line_search_scale(problem, residual, du));
-      corrections.add(scale <= smallest_line_search_scale, climbing);
+      corrections.add(scale <= smallest_line_search_scale, slope < 0);
       problem.apply_increment(du);
       step_increment += du;
       if (observer)

@@ -168,8 +168,7 @@ namespace coshell::contact
     /// For a failed solve's message, from the pairs of the last
     /// evaluation: the shell vertex squeezed hardest between two
     /// obstacles (both gaps below a tenth of the activation distance), or
-    /// else the
-    /// smallest gap and its obstacle; "" without pairs.
+    /// else the smallest gap and its obstacle; "" without pairs.
     std::string squeeze_report() const;
     double      barrier_stiffness() const;
     /// Wall-clock seconds so far: pair detection (and obstacle moves),
@@ -386,6 +385,10 @@ namespace coshell::contact
     const std::vector<dealii::Point<3>> &other_side(const Pair &pair) const;
     /// The shell vertex a pair's gap is charged to (diagnostics).
     unsigned int pair_shell_vertex(const Pair &pair) const;
+    /// Per shell vertex, its smallest gap to each obstacle in the pairs of
+    /// the last evaluation (diagnostics).
+    std::map<unsigned int, std::map<unsigned int, double>>
+    obstacle_gaps_by_vertex() const;
     /// Per shell vertex, the sorted triangles it does not pair with.
     std::vector<std::vector<unsigned int>> excluded_;
     unsigned int                           self_active_pairs_ = 0;
