@@ -329,18 +329,145 @@ namespace coshell::element
       return triad;
     }
 
-    // axial log(E^T exp(-omega) exp(theta) R_i E0): the deformational
-    // rotation of a node once the frame is spun by omega and the node
-    // rotated by theta (E^T = axes, R_i E0 = triad).
-    template<typename T>
-    Vec3<T> deformational_rotation(const Mat3<double> &axes,
-                                   const Mat3<double> &triad,
-                                   const Vec3<T>      &spin,
-                                   const Vec3<T>      &theta)
+    // ---- the deformational rotation of a node ------------------------------
+    //
+    // With E^T = A (rows of the co-rotated frame) and the node's triad
+    // B = R_i E0, the deformational rotation after the frame is spun by
+    // omega and the node rotated by theta is
+    //   psi(omega, theta) = log(A exp(-omega) exp(theta) B)
+    //                     = F(A phi),  F(phi') = log(exp(phi') A B),
+    // with phi = theta - omega - 1/2 omega x theta + O(3) (Baker-Campbell-
+    // Hausdorff) and A exp(phi) = exp(A phi) A. F has the closed-form
+    // derivatives below, so no AD is spent on rotations.
+
+    /// c(t) = (1 - (t/2) cot(t/2)) / t^2, the coefficient of skew(psi)^2 in
+    /// the inverse left Jacobian of SO(3), and c'(t) / t.
+    struct InverseJacobianCoefficient
     {
-      const Mat3<T> perturbation =
-          product(exp_map(scaled(-1.0, spin)), exp_map(theta));
-      return log_map(product(product(axes, perturbation), triad));
+      double value;
+      double derivative_over_angle;
+    };
+
+    InverseJacobianCoefficient inverse_jacobian_coefficient(double t)
+    {
+      const double t2 = t * t;
+      // The closed forms cancel: c to about 1e-16 / t^2 relative, c'/t to
+      // 1e-16 / t^4. Below 0.2 rad the series (from the Bernoulli numbers
+      // of x cot x) are used; their first omitted terms are below 1e-11
+      // relative there.
+      if (t < 0.2)
+        return {
+            1.0 / 12 +
+                t2 * (1.0 / 720 + t2 * (1.0 / 30240 +
+                                        t2 * (1.0 / 1209600 + t2 / 47900160))),
+            1.0 / 360 + t2 * (1.0 / 7560 + t2 * (1.0 / 201600 + t2 / 5987520))};
+      const double half = 0.5 * t, sine = std::sin(half);
+      const double cotangent_term = half * std::cos(half) / sine; // q(t)
+      const double cotangent_derivative =
+          0.5 * std::cos(half) / sine - 0.25 * t / (sine * sine); // q'(t)
+      return {(1.0 - cotangent_term) / t2,
+              -cotangent_derivative / (t2 * t) -
+                  2.0 * (1.0 - cotangent_term) / (t2 * t2)};
+    }
+
+    Mat3<double> skew_matrix(const Vec3<double> &a)
+    {
+      return {
+          {{{0.0, -a[2], a[1]}}, {{a[2], 0.0, -a[0]}}, {{-a[1], a[0], 0.0}}}};
+    }
+
+    Mat3<double> transposed(const Mat3<double> &a)
+    {
+      Mat3<double> t;
+      for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int j = 0; j < 3; ++j)
+          t[i][j] = a[j][i];
+      return t;
+    }
+
+    Vec3<double> transpose_times(const Mat3<double> &a, const Vec3<double> &v)
+    {
+      Vec3<double> result{};
+      for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int j = 0; j < 3; ++j)
+          result[j] += a[i][j] * v[i];
+      return result;
+    }
+
+    /// J_l^{-1}(psi) = I - 1/2 skew(psi) + c skew(psi)^2, with
+    /// skew(psi)^2 = psi psi^T - t^2 I.
+    Mat3<double> inverse_left_jacobian(const Vec3<double> &psi)
+    {
+      const double t2 = dot(psi, psi);
+      const double c  = inverse_jacobian_coefficient(std::sqrt(t2)).value;
+      Mat3<double> m  = skew_matrix(scaled(-0.5, psi));
+      for (unsigned int i = 0; i < 3; ++i)
+      {
+        m[i][i] += 1.0 - c * t2;
+        for (unsigned int j = 0; j < 3; ++j)
+          m[i][j] += c * psi[i] * psi[j];
+      }
+      return m;
+    }
+
+    /// The deformational rotation of one node and its first derivatives:
+    /// d psi / d theta = M A and d psi / d omega = -M A, M = J_l^{-1}(psi)
+    /// (since exp(phi' + dphi') = exp(J_l(phi') dphi') exp(phi')).
+    struct NodalRotationDerivatives
+    {
+      Vec3<double> value;
+      Mat3<double> inverse_jacobian; ///< M
+      Mat3<double> gradient;         ///< M A
+    };
+
+    /// The Hessian in (omega, theta) of w . psi at 0 (6 x 6, symmetric).
+    /// With u = M^T w, the gradient of w . F at 0, F's Hessian is
+    ///   H' = 1/2 skew(u) + D M,  D = d(J_l^{-1}(psi)^T w) / d psi
+    /// (the first term from J_l(phi') = I + 1/2 skew(phi') + ...); the
+    /// linear part of phi maps it through A [-I, I], the BCH term adds
+    /// +-1/2 skew(A^T u) to the mixed blocks.
+    std::array<std::array<double, 6>, 6>
+    rotation_hessian(const NodalRotationDerivatives &rotation,
+                     const Mat3<double>             &frame,
+                     const Vec3<double>             &w)
+    {
+      const Vec3<double> &psi   = rotation.value;
+      const Vec3<double>  u     = transpose_times(rotation.inverse_jacobian, w);
+      const double        t2    = dot(psi, psi);
+      const double        psi_w = dot(psi, w);
+      const auto coefficient    = inverse_jacobian_coefficient(std::sqrt(t2));
+
+      // D = -1/2 skew(w) + c (psi.w I + psi w^T - 2 w psi^T)
+      //     + c'/t (psi (psi.w) - t^2 w) psi^T.
+      Mat3<double> d = skew_matrix(scaled(-0.5, w));
+      for (unsigned int i = 0; i < 3; ++i)
+      {
+        d[i][i] += coefficient.value * psi_w;
+        const double radial =
+            coefficient.derivative_over_angle * (psi[i] * psi_w - t2 * w[i]);
+        for (unsigned int j = 0; j < 3; ++j)
+          d[i][j] += coefficient.value * (psi[i] * w[j] - 2.0 * w[i] * psi[j]) +
+                     radial * psi[j];
+      }
+      Mat3<double>       h_local     = product(d, rotation.inverse_jacobian);
+      const Mat3<double> half_skew_u = skew_matrix(scaled(0.5, u));
+      for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int j = 0; j < 3; ++j)
+          h_local[i][j] += half_skew_u[i][j];
+      const Mat3<double> h =
+          product(transposed(frame), product(h_local, frame));
+      const Mat3<double> bch =
+          skew_matrix(scaled(0.5, transpose_times(frame, u)));
+
+      std::array<std::array<double, 6>, 6> hessian;
+      for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int j = 0; j < 3; ++j)
+        {
+          hessian[i][j] = hessian[3 + i][3 + j] = h[i][j];
+          hessian[i][3 + j]                     = -h[i][j] + bch[i][j];
+          hessian[3 + i][j]                     = -h[i][j] - bch[i][j];
+        }
+      return hessian;
     }
 
     // ---- deformational DOFs and their derivatives -------------------------
@@ -355,6 +482,8 @@ namespace coshell::element
     {
       return 6 * vertex + 3 + c;
     }
+
+    using Matrix18 = std::array<std::array<double, shell_dofs>, shell_dofs>;
 
     /// Forward AD of order 1 (gradient) or 2 (gradient and Hessian) in n
     /// variables; order 0 is plain evaluation.
@@ -404,15 +533,22 @@ namespace coshell::element
       }
     };
 
+    // The translations and the frame depend on the vertices only through
+    // the edges e1 = x1 - x0 and e2 = x2 - x0 (a rigid translation moves
+    // neither), so the AD runs in those 6 variables (3 * edge + component):
+    // d/dx_v = sum_e edge_weight[v][e] d/de_e.
+    constexpr double edge_weight[3][2] = {{-1.0, -1.0}, {1.0, 0.0}, {0.0, 1.0}};
+
     void require_nondegenerate(const SpatialTriangle &current)
     {
       make_element_frame(current); // throws DegenerateTriangle
     }
 
     // d and its derivatives with respect to the perturbation p at p = 0:
-    // translations u (9 AD variables) drive the frame; each node's rotation
-    // is differentiated with respect to (omega, theta_i) (6 variables).
-    // Order 0 gives d alone.
+    // the edges (6 AD variables) drive the frame and the in-plane
+    // translations; each node's rotation is differentiated in closed form
+    // with respect to (omega, theta_i) and chained with the derivatives of
+    // omega(u). Order 0 gives d alone.
     template<int order>
     class CorotatedKinematics
     {
@@ -423,8 +559,12 @@ namespace coshell::element
       {
         require_nondegenerate(current);
         std::array<Vec3<Translational>, 3> x;
-        for (unsigned int k = 0; k < 9; ++k)
-          x[k / 3][k % 3] = TranslationJet::variable(current[k / 3][k % 3], k);
+        for (unsigned int c = 0; c < 3; ++c)
+        {
+          x[0][c] = current[0][c];
+          x[1][c] = TranslationJet::variable(current[1][c], c);
+          x[2][c] = TranslationJet::variable(current[2][c], 3 + c);
+        }
         const CorotatedConfiguration<Translational> configuration =
             corotate(reference, x);
         translations = configuration.translations;
@@ -432,16 +572,17 @@ namespace coshell::element
         if constexpr (order > 0)
           spin = frame_spin(configuration.axes, axes);
 
-        Vec3<Rotational> spin_variables, theta_variables;
-        for (unsigned int c = 0; c < 3; ++c)
-        {
-          spin_variables[c]  = RotationJet::variable(0.0, c);
-          theta_variables[c] = RotationJet::variable(0.0, 3 + c);
-        }
         for (unsigned int i = 0; i < 3; ++i)
-          nodal_rotations[i] =
-              deformational_rotation(axes, nodal_triad(rotations[i], reference),
-                                     spin_variables, theta_variables);
+        {
+          NodalRotationDerivatives &rotation = nodal_rotations[i];
+          rotation.value =
+              log_map(product(axes, nodal_triad(rotations[i], reference)));
+          if constexpr (order > 0)
+          {
+            rotation.inverse_jacobian = inverse_left_jacobian(rotation.value);
+            rotation.gradient = product(rotation.inverse_jacobian, axes);
+          }
+        }
       }
 
       /// Rows e1, e2, e3 of the current co-rotated frame.
@@ -458,122 +599,153 @@ namespace coshell::element
           {
             if (c < 2)
               d[6 * i + c] = value_of(translations[i][c]);
-            d[rotation_dof(i, c)] = value_of(nodal_rotations[i][c]);
+            d[rotation_dof(i, c)] = nodal_rotations[i].value[c];
           }
         return d;
       }
 
       /// J = dd/dp (18 x 18); the rows of w are zero.
-      FullMatrix<double> jacobian() const
+      void jacobian(Matrix18 &j) const
       {
-        FullMatrix<double> j(shell_dofs, shell_dofs);
+        j = {};
         for (unsigned int i = 0; i < 3; ++i)
-          for (unsigned int k = 0; k < 9; ++k)
-            for (unsigned int c = 0; c < 2; ++c)
-              j(6 * i + c, translation_dof(k)) =
-                  TranslationJet::derivative(translations[i][c], k);
+          for (unsigned int c = 0; c < 2; ++c)
+          {
+            const auto gradient = vertex_gradient(translations[i][c]);
+            for (unsigned int k = 0; k < 9; ++k)
+              j[6 * i + c][translation_dof(k)] = gradient[k];
+          }
 
+        const auto spin_gradient = spin_vertex_gradient();
         for (unsigned int i = 0; i < 3; ++i)
           for (unsigned int a = 0; a < 3; ++a)
           {
-            const Rotational &theta = nodal_rotations[i][a];
+            const Vec3<double> &row = nodal_rotations[i].gradient[a];
             for (unsigned int k = 0; k < 9; ++k)
-              for (unsigned int m = 0; m < 3; ++m)
-                j(rotation_dof(i, a), translation_dof(k)) +=
-                    RotationJet::derivative(theta, m) *
-                    TranslationJet::derivative(spin[m], k);
+              j[rotation_dof(i, a)][translation_dof(k)] = -(
+                  row[0] * spin_gradient[0][k] + row[1] * spin_gradient[1][k] +
+                  row[2] * spin_gradient[2][k]);
             for (unsigned int b = 0; b < 3; ++b)
-              j(rotation_dof(i, a), rotation_dof(i, b)) =
-                  RotationJet::derivative(theta, 3 + b);
+              j[rotation_dof(i, a)][rotation_dof(i, b)] = row[b];
           }
-        return j;
       }
 
-      /// sum_k weights_k d^2 d_k / dp^2 (order 2 only).
-      FullMatrix<double>
-      weighted_hessian(const dealii::Vector<double> &weights) const
+      /// h += sum_k weights_k d^2 d_k / dp^2 (order 2 only).
+      void add_weighted_hessian(const ShellDisplacements &weights,
+                                Matrix18                 &h) const
       {
         static_assert(order == 2, "second derivatives need order 2");
-        FullMatrix<double> h(shell_dofs, shell_dofs);
-        for (unsigned int k = 0; k < 9; ++k)
-          for (unsigned int l = 0; l < 9; ++l)
-            for (unsigned int i = 0; i < 3; ++i)
-              for (unsigned int c = 0; c < 2; ++c)
-                h(translation_dof(k), translation_dof(l)) +=
-                    weights[6 * i + c] *
-                    TranslationJet::second_derivative(translations[i][c], k, l);
+        std::array<std::array<double, 6>, 6> edge_hessian{};
         for (unsigned int i = 0; i < 3; ++i)
-          add_rotation_hessian(i, weights, h);
-        return h;
+          for (unsigned int c = 0; c < 2; ++c)
+            add_edge_hessian(weights[6 * i + c], translations[i][c],
+                             edge_hessian);
+        const auto spin_gradient = spin_vertex_gradient();
+        for (unsigned int i = 0; i < 3; ++i)
+          add_rotation_hessian(i, weights, spin_gradient, edge_hessian, h);
+
+        // H_x = L^T H_e L block by block, L = edge_weight.
+        for (unsigned int v = 0; v < 3; ++v)
+          for (unsigned int w = 0; w < 3; ++w)
+            for (unsigned int e = 0; e < 2; ++e)
+              for (unsigned int f = 0; f < 2; ++f)
+              {
+                const double weight = edge_weight[v][e] * edge_weight[w][f];
+                if (weight == 0.0)
+                  continue;
+                for (unsigned int c = 0; c < 3; ++c)
+                  for (unsigned int d = 0; d < 3; ++d)
+                    h[6 * v + c][6 * w + d] +=
+                        weight * edge_hessian[3 * e + c][3 * f + d];
+              }
       }
 
     private:
-      using TranslationJet = Jet<order, 9>;
-      using RotationJet    = Jet<order, 6>;
+      using TranslationJet = Jet<order, 6>;
       using Translational  = typename TranslationJet::type;
-      using Rotational     = typename RotationJet::type;
+      using SpinGradient   = std::array<std::array<double, 9>, 3>;
+
+      static std::array<double, 9> vertex_gradient(const Translational &x)
+      {
+        std::array<double, 9> gradient;
+        for (unsigned int c = 0; c < 3; ++c)
+        {
+          const double d1 = TranslationJet::derivative(x, c);
+          const double d2 = TranslationJet::derivative(x, 3 + c);
+          gradient[c]     = -d1 - d2;
+          gradient[3 + c] = d1;
+          gradient[6 + c] = d2;
+        }
+        return gradient;
+      }
+
+      /// Omega = d omega / du (3 x 9).
+      SpinGradient spin_vertex_gradient() const
+      {
+        SpinGradient gradient;
+        for (unsigned int m = 0; m < 3; ++m)
+          gradient[m] = vertex_gradient(spin[m]);
+        return gradient;
+      }
+
+      static void add_edge_hessian(double                                weight,
+                                   const Translational                  &x,
+                                   std::array<std::array<double, 6>, 6> &h)
+      {
+        for (unsigned int a = 0; a < 6; ++a)
+          for (unsigned int b = 0; b < 6; ++b)
+            h[a][b] += weight * TranslationJet::second_derivative(x, a, b);
+      }
 
       // Chain rule through omega(u) for psi = sum_a w_a theta_d,a(omega,
       // theta): psi_uu = Omega^T psi_ww Omega + psi_w . omega_uu, psi_ut =
-      // Omega^T psi_wt, with Omega = d omega / du.
-      void add_rotation_hessian(unsigned int                  i,
-                                const dealii::Vector<double> &weights,
-                                FullMatrix<double>           &h) const
+      // Omega^T psi_wt, with Omega = d omega / du. The omega_uu term is
+      // gathered in the edge variables.
+      void add_rotation_hessian(unsigned int                          i,
+                                const ShellDisplacements             &weights,
+                                const SpinGradient                   &omega,
+                                std::array<std::array<double, 6>, 6> &edge_h,
+                                Matrix18                             &h) const
       {
-        double psi_hessian[6][6] = {};
-        double psi_spin[3]       = {};
-        for (unsigned int a = 0; a < 3; ++a)
-        {
-          const double      weight = weights[rotation_dof(i, a)];
-          const Rotational &theta  = nodal_rotations[i][a];
-          for (unsigned int m = 0; m < 6; ++m)
-          {
-            if (m < 3)
-              psi_spin[m] += weight * RotationJet::derivative(theta, m);
-            for (unsigned int n = 0; n < 6; ++n)
-              psi_hessian[m][n] +=
-                  weight * RotationJet::second_derivative(theta, m, n);
-          }
-        }
-
-        double spin_gradient[3][9];
+        const Vec3<double>              w = {{weights[rotation_dof(i, 0)],
+                                              weights[rotation_dof(i, 1)],
+                                              weights[rotation_dof(i, 2)]}};
+        const NodalRotationDerivatives &rotation = nodal_rotations[i];
+        const auto psi_hessian = rotation_hessian(rotation, axes, w);
+        // d psi / d omega = -M A.
+        const Vec3<double> psi_spin =
+            scaled(-1.0, transpose_times(rotation.gradient, w));
         for (unsigned int m = 0; m < 3; ++m)
-          for (unsigned int k = 0; k < 9; ++k)
-            spin_gradient[m][k] = TranslationJet::derivative(spin[m], k);
+          add_edge_hessian(psi_spin[m], spin[m], edge_h);
 
         // Omega^T psi_w. over the 6 columns (omega, theta).
         double mixed[9][6] = {};
         for (unsigned int k = 0; k < 9; ++k)
           for (unsigned int n = 0; n < 6; ++n)
             for (unsigned int m = 0; m < 3; ++m)
-              mixed[k][n] += spin_gradient[m][k] * psi_hessian[m][n];
+              mixed[k][n] += omega[m][k] * psi_hessian[m][n];
 
         for (unsigned int k = 0; k < 9; ++k)
         {
           for (unsigned int l = 0; l < 9; ++l)
-          {
-            double value = 0.0;
-            for (unsigned int m = 0; m < 3; ++m)
-              value += mixed[k][m] * spin_gradient[m][l] +
-                       psi_spin[m] *
-                           TranslationJet::second_derivative(spin[m], k, l);
-            h(translation_dof(k), translation_dof(l)) += value;
-          }
+            h[translation_dof(k)][translation_dof(l)] +=
+                mixed[k][0] * omega[0][l] + mixed[k][1] * omega[1][l] +
+                mixed[k][2] * omega[2][l];
           for (unsigned int b = 0; b < 3; ++b)
           {
-            h(translation_dof(k), rotation_dof(i, b)) += mixed[k][3 + b];
-            h(rotation_dof(i, b), translation_dof(k)) += mixed[k][3 + b];
+            h[translation_dof(k)][rotation_dof(i, b)] += mixed[k][3 + b];
+            h[rotation_dof(i, b)][translation_dof(k)] += mixed[k][3 + b];
           }
         }
         for (unsigned int a = 0; a < 3; ++a)
           for (unsigned int b = 0; b < 3; ++b)
-            h(rotation_dof(i, a), rotation_dof(i, b)) +=
+            h[rotation_dof(i, a)][rotation_dof(i, b)] +=
                 psi_hessian[3 + a][3 + b];
       }
 
       std::array<std::array<Translational, 2>, 3> translations{};
       Vec3<Translational>                         spin{}; ///< order > 0
-      std::array<Vec3<Rotational>, 3>             nodal_rotations{};
+      std::array<NodalRotationDerivatives, 3>     nodal_rotations{};
       Mat3<double>                                axes{};
     };
 
@@ -584,15 +756,75 @@ namespace coshell::element
       return dealii::Vector<double>(a.begin(), a.end());
     }
 
-    // f = J^T g.
-    ShellDisplacements transpose_times(const FullMatrix<double>     &j,
-                                       const dealii::Vector<double> &g)
+    // g = K_l d, the force conjugate to the deformational DOFs.
+    ShellDisplacements local_force(const FullMatrix<double> &stiffness,
+                                   const ShellDisplacements &d)
     {
-      dealii::Vector<double> f(shell_dofs);
-      j.Tvmult(f, g);
-      ShellDisplacements result;
-      std::copy(f.begin(), f.end(), result.begin());
-      return result;
+      ShellDisplacements g{};
+      for (unsigned int a = 0; a < shell_dofs; ++a)
+        for (unsigned int b = 0; b < shell_dofs; ++b)
+          g[a] += stiffness(a, b) * d[b];
+      return g;
+    }
+
+    // f = J^T g.
+    ShellDisplacements jacobian_transpose_times(const Matrix18           &j,
+                                                const ShellDisplacements &g)
+    {
+      ShellDisplacements f{};
+      for (unsigned int a = 0; a < shell_dofs; ++a)
+        for (unsigned int b = 0; b < shell_dofs; ++b)
+          f[b] += j[a][b] * g[a];
+      return f;
+    }
+
+    constexpr bool is_rotation(unsigned int dof)
+    {
+      return dof % 6 >= 3;
+    }
+
+    // J^T K_l J, using the shape of J: the rows of w are zero, and a
+    // rotation row of node i has entries only in the translation columns
+    // and in node i's rotation columns. The result is symmetric.
+    void congruence(const FullMatrix<double> &stiffness,
+                    const Matrix18           &j,
+                    Matrix18                 &result)
+    {
+      constexpr std::array<unsigned int, 15> rows = {
+          {0, 1, 3, 4, 5, 6, 7, 9, 10, 11, 12, 13, 15, 16, 17}};
+      // K J, column by column.
+      Matrix18 k_j;
+      for (unsigned int b = 0; b < shell_dofs; ++b)
+      {
+        const unsigned int first = is_rotation(b) ? 6 * (b / 6) + 3 : 0;
+        for (unsigned int a = 0; a < shell_dofs; ++a)
+        {
+          double sum = 0.0;
+          if (is_rotation(b))
+            for (unsigned int c = first; c < first + 3; ++c)
+              sum += stiffness(a, c) * j[c][b];
+          else
+            for (const unsigned int c : rows)
+              sum += stiffness(a, c) * j[c][b];
+          k_j[a][b] = sum;
+        }
+      }
+      // J^T (K J), upper triangle.
+      for (unsigned int a = 0; a < shell_dofs; ++a)
+      {
+        const unsigned int first = is_rotation(a) ? 6 * (a / 6) + 3 : 0;
+        for (unsigned int b = a; b < shell_dofs; ++b)
+        {
+          double sum = 0.0;
+          if (is_rotation(a))
+            for (unsigned int c = first; c < first + 3; ++c)
+              sum += j[c][a] * k_j[c][b];
+          else
+            for (const unsigned int c : rows)
+              sum += j[c][a] * k_j[c][b];
+          result[a][b] = result[b][a] = sum;
+        }
+      }
     }
 
     // Under R <- exp(a) R the force at a state already updated by exp(b)
@@ -600,26 +832,34 @@ namespace coshell::element
     // gains 1/2 eps_kab m_k = -1/2 skew(m)_ab on each node's rotation block,
     // m being that node's moment.
     void add_rotation_update_term(const ShellDisplacements &force,
-                                  FullMatrix<double>       &tangent)
+                                  Matrix18                 &tangent)
     {
       for (unsigned int i = 0; i < 3; ++i)
         for (unsigned int a = 0; a < 3; ++a)
         {
           const unsigned int b = (a + 1) % 3, k = (a + 2) % 3;
           const double       half_moment = 0.5 * force[rotation_dof(i, k)];
-          tangent(rotation_dof(i, a), rotation_dof(i, b)) += half_moment;
-          tangent(rotation_dof(i, b), rotation_dof(i, a)) -= half_moment;
+          tangent[rotation_dof(i, a)][rotation_dof(i, b)] += half_moment;
+          tangent[rotation_dof(i, b)][rotation_dof(i, a)] -= half_moment;
         }
     }
 
     // K <- (K + K^T) / 2. The consistent tangent is symmetric at
     // equilibrium (Felippa & Haugen 2005); away from it the skew part is
     // what the symmetric variant gives up for a Cholesky solve.
-    void symmetrize(FullMatrix<double> &tangent)
+    void symmetrize(Matrix18 &tangent)
     {
-      for (unsigned int i = 0; i < tangent.m(); ++i)
-        for (unsigned int j = i + 1; j < tangent.n(); ++j)
-          tangent(i, j) = tangent(j, i) = 0.5 * (tangent(i, j) + tangent(j, i));
+      for (unsigned int i = 0; i < shell_dofs; ++i)
+        for (unsigned int j = i + 1; j < shell_dofs; ++j)
+          tangent[i][j] = tangent[j][i] = 0.5 * (tangent[i][j] + tangent[j][i]);
+    }
+
+    void copy_to(const Matrix18 &source, FullMatrix<double> &target)
+    {
+      if (target.m() != shell_dofs || target.n() != shell_dofs)
+        target.reinit(shell_dofs, shell_dofs);
+      for (unsigned int i = 0; i < shell_dofs; ++i)
+        std::copy(source[i].begin(), source[i].end(), &target(i, 0));
     }
 
     CorotationalReference make_reference(const SpatialTriangle &initial)
@@ -670,33 +910,29 @@ namespace coshell::element
                                          ShellDisplacements    &force,
                                          FullMatrix<double>    *tangent) const
   {
-    // g = K_l d is the force conjugate to d; f = J^T g.
-    const auto local_force = [&](const ShellDisplacements &d)
-    {
-      dealii::Vector<double> g(shell_dofs);
-      stiffness.vmult(g, to_vector(d));
-      return g;
-    };
-
     if (tangent != nullptr && tangent_type != CorotationalTangent::paper)
     {
-      // K = J^T K_l J + sum_k g_k d^2 d_k/dp^2 + rotation-update term.
+      // K = J^T K_l J + sum_k g_k d^2 d_k/dp^2 + rotation-update term,
+      // with g = K_l d and f = J^T g.
       const CorotatedKinematics<2> jets(reference, current, rotations);
-      const ShellDisplacements     d = jets.dofs();
-      const dealii::Vector<double> g = local_force(d);
-      const FullMatrix<double>     j = jets.jacobian();
-      force                          = transpose_times(j, g);
-      tangent->reinit(shell_dofs, shell_dofs);
-      tangent->triple_product(stiffness, j, j, true, false);
-      tangent->add(1.0, jets.weighted_hessian(g));
-      add_rotation_update_term(force, *tangent);
+      Matrix18                     j;
+      jets.jacobian(j);
+      const ShellDisplacements g = local_force(stiffness, jets.dofs());
+      force                      = jacobian_transpose_times(j, g);
+      Matrix18 k;
+      congruence(stiffness, j, k);
+      jets.add_weighted_hessian(g, k);
+      add_rotation_update_term(force, k);
       if (tangent_type == CorotationalTangent::symmetric)
-        symmetrize(*tangent);
+        symmetrize(k);
+      copy_to(k, *tangent);
       return;
     }
 
     const CorotatedKinematics<1> jets(reference, current, rotations);
-    force = transpose_times(jets.jacobian(), local_force(jets.dofs()));
+    Matrix18                     j;
+    jets.jacobian(j);
+    force = jacobian_transpose_times(j, local_force(stiffness, jets.dofs()));
     if (tangent != nullptr)
     {
       // The paper's tangent: K_l rotated along the current frame only.
@@ -787,12 +1023,9 @@ namespace coshell::element
 
   Tensor<2, 3> so3_left_jacobian_inverse(const Tensor<1, 3> &theta)
   {
-    const double t = theta.norm(), t2 = t * t;
-    // (1 - (t/2) cot(t/2)) / t^2: its closed form cancels to 1e-16 / t^2
-    // relative, so below 0.02 rad the series is used. (The form with
-    // 1 - cos t cost the SE(3) integrator a residual floor of 3e-8.)
-    const double c = t < 0.02 ? 1.0 / 12 + t2 / 720 + t2 * t2 / 30240
-                              : (1 - 0.5 * t / std::tan(0.5 * t)) / t2;
+    // (The form of c with 1 - cos t cost the SE(3) integrator a residual
+    // floor of 3e-8; inverse_jacobian_coefficient keeps its digits.)
+    const double c = inverse_jacobian_coefficient(theta.norm()).value;
     return polynomial_in_skew(theta, -0.5, c);
   }
 } // namespace coshell::element
