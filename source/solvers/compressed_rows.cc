@@ -16,6 +16,12 @@ namespace coshell::solvers
       // diagonal entry moves, the rest is stored ascending already.
       for (auto entry = matrix.begin(row); entry != matrix.end(row); ++entry)
       {
+        // The pattern reserves room for every contact pair that may come
+        // within reach during a step; most of those entries stay exactly
+        // zero (70 % of a folded lens's), and factorized they would only
+        // cost fill and flops. The diagonal is kept whatever its value.
+        if (entry->value() == 0.0 && entry->column() != row)
+          continue;
         int place = k++;
         for (; place > starts[row] &&
                indices[place - 1] > static_cast<int>(entry->column());
@@ -29,6 +35,8 @@ namespace coshell::solvers
       }
     }
     starts[n] = k;
+    indices.resize(k);
+    values.resize(k);
   }
 
   bool CompressedRows::same_pattern(const CompressedRows &other) const

@@ -7,7 +7,9 @@
 namespace coshell::solvers
 {
   /// A copy of a deal.II SparseMatrix in plain compressed-row arrays, the
-  /// form SuiteSparse reads (as compressed columns of the transpose).
+  /// form SuiteSparse reads (as compressed columns of the transpose),
+  /// without the off-diagonal entries that are exactly zero: the solvers
+  /// analyse again when that pattern changes.
   /// Column indices ascend within each row: deal.II stores the diagonal
   /// first, UMFPACK rejects unsorted columns.
   struct CompressedRows
