@@ -4,6 +4,10 @@ Newton history against references given here.
 
   check_nonlinear.py --coshell BIN --prm FILE --output DIR [--set A/B=v ...]
      [--point QOI LOAD_FACTOR REFERENCE]...  value at that load factor
+     [--table CSV COLUMN QOI SIGN]...  every row of a published table
+                               (first column: load factor; '#' lines are
+                               notes) whose load factor the path reaches:
+                               SIGN * QOI against COLUMN
      [--rtol R] [--length L]   |value - reference| <= R * max(|reference|, L)
      [--min-order P]           some Newton iteration shows convergence order
                                >= P (log r_{k+1} / log r_k, relative residuals)
@@ -54,6 +58,25 @@ def check_points(rows, points, rtol, length, column="load_factor"):
     return failures
 
 
+def table_points(path, column, qoi, sign):
+    """The (QOI, load factor, reference) triples of a reference table; the
+    sign turns the table's magnitudes into the QOI's signed values."""
+    with open(path) as f:
+        lines = [line for line in f if not line.startswith("#")]
+    points = []
+    for row in csv.DictReader(lines):
+        factor = float(row["load_factor"])
+        if factor > 0:
+            points.append((qoi, factor, float(sign) * float(row[column])))
+    return points
+
+
+def reached(rows, points, column):
+    """The points whose load factor the path has a step at."""
+    return [p for p in points
+            if any(abs(float(r[column]) - p[1]) <= 1e-9 for r in rows)]
+
+
 def observed_orders(history, column, floor):
     """Observed orders p = log(e2/e1) / log(e1/e0) of three consecutive
     decreasing values of COLUMN in one step, in the asymptotic range
@@ -87,6 +110,7 @@ def main():
     parser = argparse.ArgumentParser()
     add_scene_arguments(parser)
     parser.add_argument("--point", nargs=3, action="append", default=[])
+    parser.add_argument("--table", nargs=4, action="append", default=[])
     parser.add_argument("--rtol", type=float, default=0.01)
     parser.add_argument("--length", type=float, default=0.0)
     parser.add_argument("--min-order", type=float)
@@ -105,9 +129,19 @@ def main():
     rows = read_csv(os.path.join(args.output, "load_displacement.csv"))
     history = read_csv(os.path.join(args.output, "newton_history.csv"))
 
-    failures = check_points(rows, args.point, args.rtol, args.length,
+    points = list(args.point)
+    for path, column, qoi, sign in args.table:
+        table = table_points(path, column, qoi, sign)
+        # Step cuts may put the path beside some rows; most must be hit.
+        hit = reached(rows, table, args.parameter)
+        print(f"{path}: {len(hit)} of {len(table)} rows of {column} reached")
+        if len(hit) < len(table) // 2:
+            points += table  # the missing ones fail below
+        else:
+            points += hit
+    failures = check_points(rows, points, args.rtol, args.length,
                             args.parameter)
-    checks = len(args.point) + len(args.minimum)
+    checks = len(points) + len(args.minimum)
     for name, factor, minimum in args.minimum:
         row = min(rows, key=lambda r: abs(float(r["load_factor"]) - float(factor)))
         value = float(row[name])
