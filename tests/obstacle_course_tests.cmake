@@ -33,3 +33,26 @@ obstacle_course_case(pinched_cylinder load_point_deflection -0.000018248 0.005 1
 # Pinched hemisphere: reference 0.094 (MacNeal & Harder; thin-shell
 # solutions quoted since are 0.0924-0.0940). Slow, O(h^1.3), approach.
 obstacle_course_case(pinched_hemisphere load_point_displacement 0.094 0.01 1.0 0.01)
+
+# ANDES on the coarse hemisphere (issue: the ANDES defect). Without the
+# curvature scaling of its higher-order stiffness (doc/theory.md, section
+# 14) ANDES+DKT locked: 91 %, 48 %, 6.4 % too stiff at 4 x 4, 8 x 8 and
+# 16 x 16 squares per quarter. With c = 3: 26 %, 3.2 %, 1.2 %; the 8 x 8
+# mesh must be within 5 % and the 16 x 16 within 1.5 %, and c = 0 (the
+# optimal element unscaled) must still show the locking, so that the
+# scaling, not a change elsewhere, is what the first two measure.
+foreach(level_tolerance "1;0.05" "2;0.015")
+  list(GET level_tolerance 0 level)
+  list(GET level_tolerance 1 tolerance)
+  coshell_scene_test(obstacle.pinched_hemisphere.andes_dkt_level_${level}
+    obstacle_course/pinched_hemisphere.prm
+    ARGS --set "Mesh/Refinement levels=${level}" --set ${no_vtu}
+         --set "Element/Membrane element=andes"
+         --value load_point_displacement 0.094 ${tolerance})
+endforeach()
+coshell_scene_test(obstacle.pinched_hemisphere.andes_dkt_unscaled_locks
+  obstacle_course/pinched_hemisphere.prm
+  ARGS --set "Mesh/Refinement levels=1" --set ${no_vtu}
+       --set "Element/Membrane element=andes"
+       --set "Element/ANDES curvature scaling=0"
+       --error-above load_point_displacement 0.094 0.4)

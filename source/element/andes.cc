@@ -248,12 +248,14 @@ namespace coshell::element
   } // namespace
 
   FullMatrix<double> andes_stiffness(const PlanarTriangle &triangle,
-                                     const ShellMaterial  &material)
+                                     const ShellMaterial  &material,
+                                     double                higher_order_scale)
   {
     const auto           order         = counter_clockwise_order(triangle);
     const PlanarTriangle ccw           = reordered(triangle, order);
     FullMatrix<double>   ccw_stiffness = basic_stiffness(ccw, material);
-    ccw_stiffness.add(1.0, higher_order_stiffness(ccw, material));
+    ccw_stiffness.add(higher_order_scale,
+                      higher_order_stiffness(ccw, material));
 
     FullMatrix<double> stiffness(membrane_dofs, membrane_dofs);
     for (unsigned int a = 0; a < membrane_dofs; ++a)

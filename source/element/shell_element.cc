@@ -60,7 +60,7 @@ namespace coshell::element
                                           const ShellElementOptions &options)
     {
       if (*options.membrane == MembraneElement::andes)
-        return andes_stiffness(triangle, material);
+        return andes_stiffness(triangle, material, options.higher_order_scale);
       FullMatrix<double> membrane = cst_stiffness(triangle, material);
       add_drilling_penalty(triangle, material, options.drilling_factor,
                            membrane);

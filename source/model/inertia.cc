@@ -251,7 +251,7 @@ namespace coshell::model
     {
       c.add(parameters_.rayleigh_beta,
             element::shell_stiffness(current, model_.material(cell),
-                                     model_.element_parameters().options));
+                                     model_.element_options(cell)));
     }
     if (parameters_.normal_drag > 0 || parameters_.tangential_drag > 0)
     {

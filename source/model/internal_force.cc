@@ -22,11 +22,10 @@ namespace coshell::model
   {
     if (kinematics_ != Formulation::corotational)
       return;
-    const auto &parameters = model.element_parameters();
     corotational_.reserve(model.surface().n_active_cells());
     for (const auto &cell : model.dof_handler().active_cell_iterators())
       corotational_.emplace_back(model.triangle(cell), model.material(cell),
-                                 parameters.options);
+                                 model.element_options(cell));
   }
 
   std::string InternalForce::name() const
@@ -66,9 +65,9 @@ namespace coshell::model
   {
     if (kinematics_ == Formulation::linear)
     {
-      const auto              &parameters = model_.element_parameters();
-      const FullMatrix<double> stiffness  = element::shell_stiffness(
-           model_.triangle(cell), model_.material(cell), parameters.options);
+      const FullMatrix<double> stiffness =
+          element::shell_stiffness(model_.triangle(cell), model_.material(cell),
+                                   model_.element_options(cell));
       const auto u = model_.cell_values(cell, point.state.values());
       for (unsigned int i = 0; i < element::shell_dofs; ++i)
         for (unsigned int j = 0; j < element::shell_dofs; ++j)
@@ -95,9 +94,9 @@ namespace coshell::model
     if (kinematics_ == Formulation::corotational)
       return corotational_[cell->active_cell_index()].energy(
           current_triangle(model_, cell, state), nodal_rotations(cell, state));
-    const auto              &parameters = model_.element_parameters();
-    const FullMatrix<double> stiffness  = element::shell_stiffness(
-         model_.triangle(cell), parameters.material, parameters.options);
+    const FullMatrix<double> stiffness =
+        element::shell_stiffness(model_.triangle(cell), model_.material(cell),
+                                 model_.element_options(cell));
     const auto u      = model_.cell_values(cell, state.values());
     double     energy = 0;
     for (unsigned int i = 0; i < element::shell_dofs; ++i)

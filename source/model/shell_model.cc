@@ -60,6 +60,7 @@ namespace coshell::model
     number_dofs_by_rank();
     number_vertex_dofs();
     assign_cell_materials();
+    assign_cell_options();
   }
 
   std::vector<double> ShellModel::cell_values_of(const std::string &text,
@@ -135,6 +136,49 @@ namespace coshell::model
   ShellModel::material(const CellIterator &cell) const
   {
     return cell_materials_[cell->active_cell_index()];
+  }
+
+  // On a faceted curved surface the ANDES higher-order stiffness K_h reads
+  // part of a facet's bending rotation as drilling (the facet's normal is
+  // off its vertices' mean normals by phi) and charges it at membrane
+  // stiffness, E h: relative to bending that is (l phi / h)^2, which locks
+  // coarse curved meshes. K_h / (1 + c (l phi / h)^2) removes the locking
+  // and keeps Felippa's element (factor 1) on flat meshes.
+  void ShellModel::assign_cell_options()
+  {
+    cell_options_.assign(surface_.n_active_cells(), element_.options);
+    const double c = element_.andes_curvature_scaling;
+    if (c == 0 || element_.options.membrane != element::MembraneElement::andes)
+      return;
+    // Area-weighted mean of the oriented cell normals at each vertex.
+    std::vector<Tensor<1, 3>> vertex_normal(surface_.n_vertices());
+    for (const auto &cell : dof_handler_.active_cell_iterators())
+      for (unsigned int v = 0; v < 3; ++v)
+        vertex_normal[cell->vertex_index(v)] +=
+            element::area(triangle(cell)) * unit_normal(cell);
+    for (const auto &cell : dof_handler_.active_cell_iterators())
+    {
+      const Tensor<1, 3> normal = unit_normal(cell);
+      double             phi_sq = 0, edge_sq = 0;
+      const auto         corners = triangle(cell);
+      for (unsigned int v = 0; v < 3; ++v)
+      {
+        const Tensor<1, 3> &mean = vertex_normal[cell->vertex_index(v)];
+        const double        cosine =
+            std::min(1.0, std::abs(normal * mean) / mean.norm());
+        phi_sq = std::max(phi_sq, 2.0 * (1.0 - cosine)); // ~ phi^2
+        edge_sq += (corners[(v + 1) % 3] - corners[v]).norm_square() / 3.0;
+      }
+      const double h = material(cell).thickness;
+      cell_options_[cell->active_cell_index()].higher_order_scale =
+          1.0 / (1.0 + c * edge_sq * phi_sq / (h * h));
+    }
+  }
+
+  const element::ShellElementOptions &
+  ShellModel::element_options(const CellIterator &cell) const
+  {
+    return cell_options_[cell->active_cell_index()];
   }
 
   double ShellModel::vertex_thickness(unsigned int v) const
@@ -316,7 +360,7 @@ namespace coshell::model
         [this](const CellIterator &cell, CellContribution &contribution)
         {
           contribution.matrix = element::shell_stiffness(
-              triangle(cell), material(cell), element_.options);
+              triangle(cell), material(cell), element_options(cell));
         },
         [&](const CellContribution &contribution)
         {
@@ -347,7 +391,7 @@ namespace coshell::model
     {
       auto &r = result[cell->active_cell_index()];
       r       = element::shell_resultants(triangle(cell), material(cell),
-                                          element_.options,
+                                          element_options(cell),
                                           cell_values(cell, solution));
       orient_moments(cell, r);
     }

@@ -57,8 +57,10 @@ namespace coshell::element
   /// nothing), passes the patch test, and a rectangle of two triangles
   /// stores the exact energy in in-plane pure bending for any aspect ratio.
   /// Either vertex order. Throws DegenerateTriangle like the CST.
+  /// higher_order_scale multiplies K_h (ShellElementOptions).
   FullMatrix<double> andes_stiffness(const PlanarTriangle &triangle,
-                                     const ShellMaterial  &material);
+                                     const ShellMaterial  &material,
+                                     double higher_order_scale = 1.0);
 
   /// Centroidal membrane forces of the ANDES triangle: the constant stress
   /// of the basic part, N = C L^T u / A. The higher-order strains only

@@ -22,6 +22,10 @@ namespace coshell::element
     /// Dimensionless size of the drilling penalty (see add_drilling_penalty);
     /// used by the CST only.
     double drilling_factor = 1e-3;
+    /// Dimensionless multiplier of the ANDES membrane's higher-order
+    /// stiffness K_h: 1 is Felippa's optimal element. ShellModel lowers it
+    /// on the facets of a curved mesh, where K_h locks (doc/theory.md).
+    double higher_order_scale = 1.0;
   };
 
   /// Number of DOFs of the flat shell triangle: 3 vertices x (u_x, u_y,

@@ -31,6 +31,9 @@ namespace coshell::model
     std::string                  density_expression;
     element::ShellElementOptions options;
     Formulation                  formulation = Formulation::linear;
+    /// c of the ANDES higher-order scaling 1 / (1 + c l^2 phi^2 / h^2),
+    /// applied per triangle by ShellModel (dimensionless; 0: none).
+    double andes_curvature_scaling = 3.0;
 
     static void declare_parameters(dealii::ParameterHandler &prm);
     /// Throws std::invalid_argument naming the parameter for non-physical

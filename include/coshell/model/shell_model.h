@@ -77,6 +77,10 @@ namespace coshell::model
     /// The material of a cell: E and nu, and the thickness and density
     /// of its region and position (Material/Thickness and Density).
     const element::ShellMaterial &material(const CellIterator &cell) const;
+    /// The element options of a cell: those of the prm, with the ANDES
+    /// higher-order scale of that triangle.
+    const element::ShellElementOptions &
+    element_options(const CellIterator &cell) const;
     /// Area-weighted mean thickness of the cells around used vertex 'v'.
     double vertex_thickness(unsigned int v) const;
     /// Smallest and largest cell thickness.
@@ -114,17 +118,20 @@ namespace coshell::model
     resultants(const dealii::Vector<double> &solution) const;
 
   private:
-    const mesh::Surface                &surface_;
-    ElementParameters                   element_;
-    dealii::FESystem<2, 3>              fe_;
-    dealii::DoFHandler<2, 3>            dof_handler_;
-    std::vector<VertexDofs>             vertex_dofs_;
-    dealii::IndexSet                    locally_owned_dofs_;
-    std::vector<int>                    normal_sign_;
-    std::vector<element::ShellMaterial> cell_materials_;
-    std::vector<double>                 vertex_thickness_;
+    const mesh::Surface                      &surface_;
+    ElementParameters                         element_;
+    dealii::FESystem<2, 3>                    fe_;
+    dealii::DoFHandler<2, 3>                  dof_handler_;
+    std::vector<VertexDofs>                   vertex_dofs_;
+    dealii::IndexSet                          locally_owned_dofs_;
+    std::vector<int>                          normal_sign_;
+    std::vector<element::ShellMaterial>       cell_materials_;
+    std::vector<element::ShellElementOptions> cell_options_;
+    std::vector<double>                       vertex_thickness_;
 
     void number_vertex_dofs();
+    /// cell_options_, with each triangle's ANDES higher-order scale.
+    void assign_cell_options();
     /// On several ranks: numbers DoFs part by part (the mesh's subdomain
     /// ids), so each rank owns a contiguous range.
     void number_dofs_by_rank();
