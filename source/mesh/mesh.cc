@@ -166,6 +166,13 @@ namespace coshell::mesh
         }
       std::filesystem::remove(log);
       if (!meshed)
+      {
+        // A .geo's Error() still lets gmsh write its mesh before it exits
+        // non-zero: leave nothing of the failed run in the temp directory.
+        std::error_code ignored;
+        std::filesystem::remove(output, ignored);
+      }
+      if (!meshed)
         throw std::runtime_error("gmsh could not mesh '" + geo_file + "'" +
                                  (error_line.empty()
                                       ? std::string(" (is the gmsh executable "

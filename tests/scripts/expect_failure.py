@@ -1,15 +1,19 @@
 #!/usr/bin/python3
 """Runs a command that must fail cleanly: non-zero exit status, an error
-message matching a pattern on stderr, and no summary.json left behind.
+message matching a pattern on stderr, no summary.json left behind, and
+no temporary file of the process (coshell-<pid>-*, e.g. a gmsh mesh of
+an obstacle) left in the temp directory.
 
   expect_failure.py --pattern REGEX [--output DIR] -- command args...
 """
 import argparse
+import glob
 import os
 import re
 import shutil
 import subprocess
 import sys
+import tempfile
 
 
 def main():
@@ -21,7 +25,12 @@ def main():
     command = [c for c in args.command if c != "--"]
     if args.output and os.path.isdir(args.output):
         shutil.rmtree(args.output)
-    result = subprocess.run(command, capture_output=True, text=True)
+    process = subprocess.Popen(command, stdout=subprocess.PIPE,
+                               stderr=subprocess.PIPE, text=True)
+    stdout, stderr = process.communicate()
+    result = subprocess.CompletedProcess(command, process.returncode, stdout, stderr)
+    left_behind = glob.glob(os.path.join(tempfile.gettempdir(),
+                                         f"coshell-{process.pid}-*"))
     print("command:", " ".join(repr(c) for c in command))
     print("exit status:", result.returncode)
     print("stderr:", result.stderr.strip())
@@ -34,6 +43,10 @@ def main():
         problems.append(f"stderr does not match /{args.pattern}/")
     if args.output and os.path.exists(os.path.join(args.output, "summary.json")):
         problems.append("a summary.json was left behind")
+    if left_behind:
+        problems.append(f"temporary files were left behind: {left_behind}")
+        for path in left_behind:
+            os.remove(path)
     for p in problems:
         print("FAIL:", p)
     sys.exit(1 if problems else 0)
