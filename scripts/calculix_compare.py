@@ -169,27 +169,36 @@ def grid_point(benchmark, s, t):
     return (10.0 * s, 10.0 * t, 0.0)
 
 
+def structured_quads(nx, ny, point, quadratic):
+    """nx x ny quads of the map point(s, t) of the unit square (8 nodes,
+    midside nodes mapped too, when quadratic), counter-clockwise in (s, t).
+    Returns the points, the quads (0-based) and {(s, t): node index}."""
+    mx, my = (2 * nx, 2 * ny) if quadratic else (nx, ny)
+    index, points = {}, []
+    for j in range(my + 1):
+        for i in range(mx + 1):
+            if quadratic and i % 2 and j % 2:
+                continue  # no centre node in 8-node quads
+            index[i, j] = len(points)
+            points.append(point(i / mx, j / my))
+    step = 2 if quadratic else 1
+    quads = []
+    for j in range(0, my, step):
+        for i in range(0, mx, step):
+            nodes = [index[c] for c in ((i, j), (i + step, j), (i + step, j + step), (i, j + step))]
+            if quadratic:
+                nodes += [index[i + 1, j], index[i + 2, j + 1], index[i + 1, j + 2], index[i, j + 1]]
+            quads.append(tuple(nodes))
+    by_parameter = {(i / mx, j / my): k for (i, j), k in index.items()}
+    return points, quads, by_parameter
+
+
 def quad_mesh(benchmark, level, quadratic):
     """n x n structured quads (8 nodes with midside nodes when quadratic),
     nodes ordered counter-clockwise seen from the outward normal."""
     n = BENCHMARKS[benchmark]["base_squares"] * 2 ** level
-    m = 2 * n if quadratic else n
-    index, points = {}, []
-    for j in range(m + 1):
-        for i in range(m + 1):
-            if quadratic and i % 2 and j % 2:
-                continue  # no centre node in 8-node quads
-            index[i, j] = len(points)
-            points.append(grid_point(benchmark, i / m, j / m))
-    step = 2 if quadratic else 1
-    quads = []
-    for j in range(0, m, step):
-        for i in range(0, m, step):
-            corners = [(i, j), (i + step, j), (i + step, j + step), (i, j + step)]
-            nodes = [index[c] for c in corners]
-            if quadratic:
-                nodes += [index[i + 1, j], index[i + 2, j + 1], index[i + 1, j + 2], index[i, j + 1]]
-            quads.append(tuple(nodes))
+    points, quads, _ = structured_quads(n, n, lambda s, t: grid_point(benchmark, s, t),
+                                        quadratic)
     return points, quads
 
 
@@ -414,8 +423,9 @@ def plot(rows, benchmark, path):
     plt.close(figure)
 
 
-def fastest(rows, target):
-    reached = [r for r in rows if float(r["relative_error"]) <= target]
+def fastest(rows, target, error=lambda row: float(row["relative_error"])):
+    """The quickest run (whole process) whose error is within the target."""
+    reached = [r for r in rows if error(r) <= target]
     return min(reached, key=lambda r: float(r["process_wall_s"])) if reached else None
 
 
