@@ -2,6 +2,7 @@
 
 #include <deal.II/base/multithread_info.h>
 
+#include <dlfcn.h>
 #include <mpi.h>
 
 #include <algorithm>
@@ -161,13 +162,33 @@ namespace coshell::solvers
       MPI_Abort(MPI_COMM_WORLD, status);
   }
 
+  namespace
+  {
+    // The BLAS behind SuiteSparse (OpenBLAS on Debian with the project's
+    // set-up) and an OpenMP runtime start threads of their own, one per
+    // core, and OpenBLAS's spin while idle: with Parallel/Threads = 1 they
+    // would still burn the other cores. Both get the scheduler's thread
+    // count, through whatever the process has loaded (the reference BLAS
+    // has no such call, then nothing happens).
+    void limit_library_threads(unsigned int threads)
+    {
+      using SetThreads = void (*)(int);
+      for (const char *name :
+           {"openblas_set_num_threads", "omp_set_num_threads"})
+        if (const auto set =
+                reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, name)))
+          set(static_cast<int>(threads));
+    }
+  } // namespace
+
   void ThreadSettings::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Parallel");
     prm.declare_entry("Threads", "0", Patterns::Integer(0),
-                      "Number of threads for assembly (dimensionless); 0 = "
-                      "all cores (capped by the environment variable "
-                      "DEAL_II_NUM_THREADS if set).");
+                      "Number of threads for assembly, and for the BLAS "
+                      "(OpenBLAS) and OpenMP runtimes the linear solvers "
+                      "use (dimensionless); 0 = all cores (capped by the "
+                      "environment variable DEAL_II_NUM_THREADS if set).");
     prm.leave_subsection();
   }
 
@@ -178,6 +199,7 @@ namespace coshell::solvers
     prm.leave_subsection();
     MultithreadInfo::set_thread_limit(
         threads == 0 ? numbers::invalid_unsigned_int : threads);
+    limit_library_threads(MultithreadInfo::n_threads());
   }
 
   unsigned int ThreadSettings::n_threads()
