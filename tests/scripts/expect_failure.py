@@ -14,6 +14,7 @@ import shutil
 import subprocess
 import sys
 import tempfile
+import time
 
 
 def main():
@@ -25,12 +26,15 @@ def main():
     command = [c for c in args.command if c != "--"]
     if args.output and os.path.isdir(args.output):
         shutil.rmtree(args.output)
+    started = time.time() - 1  # file times have coarse resolution
     process = subprocess.Popen(command, stdout=subprocess.PIPE,
                                stderr=subprocess.PIPE, text=True)
     stdout, stderr = process.communicate()
     result = subprocess.CompletedProcess(command, process.returncode, stdout, stderr)
-    left_behind = glob.glob(os.path.join(tempfile.gettempdir(),
-                                         f"coshell-{process.pid}-*"))
+    # Only files this process made: an older one of a recycled pid is not its.
+    left_behind = [path for path in glob.glob(os.path.join(
+        tempfile.gettempdir(), f"coshell-{process.pid}-*"))
+        if os.path.getmtime(path) >= started]
     print("command:", " ".join(repr(c) for c in command))
     print("exit status:", result.returncode)
     print("stderr:", result.stderr.strip())
