@@ -394,22 +394,6 @@ namespace coshell::element
       return result;
     }
 
-    /// J_l^{-1}(psi) = I - 1/2 skew(psi) + c skew(psi)^2, with
-    /// skew(psi)^2 = psi psi^T - t^2 I.
-    Mat3<double> inverse_left_jacobian(const Vec3<double> &psi)
-    {
-      const double t2 = dot(psi, psi);
-      const double c  = inverse_jacobian_coefficient(std::sqrt(t2)).value;
-      Mat3<double> m  = skew_matrix(scaled(-0.5, psi));
-      for (unsigned int i = 0; i < 3; ++i)
-      {
-        m[i][i] += 1.0 - c * t2;
-        for (unsigned int j = 0; j < 3; ++j)
-          m[i][j] += c * psi[i] * psi[j];
-      }
-      return m;
-    }
-
     /// The deformational rotation of one node and its first derivatives:
     /// d psi / d theta = M A and d psi / d omega = -M A, M = J_l^{-1}(psi)
     /// (since exp(phi' + dphi') = exp(J_l(phi') dphi') exp(phi')).
@@ -579,7 +563,9 @@ namespace coshell::element
               log_map(product(axes, nodal_triad(rotations[i], reference)));
           if constexpr (order > 0)
           {
-            rotation.inverse_jacobian = inverse_left_jacobian(rotation.value);
+            const Vec3<double> &psi   = rotation.value;
+            rotation.inverse_jacobian = to_mat3(so3_left_jacobian_inverse(
+                Tensor<1, 3>({psi[0], psi[1], psi[2]})));
             rotation.gradient = product(rotation.inverse_jacobian, axes);
           }
         }

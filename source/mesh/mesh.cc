@@ -171,14 +171,13 @@ namespace coshell::mesh
         // non-zero: leave nothing of the failed run in the temp directory.
         std::error_code ignored;
         std::filesystem::remove(output, ignored);
-      }
-      if (!meshed)
         throw std::runtime_error("gmsh could not mesh '" + geo_file + "'" +
                                  (error_line.empty()
                                       ? std::string(" (is the gmsh executable "
                                                     "installed? command: " +
                                                     command.str() + ")")
                                       : ": " + error_line));
+      }
       return output.string();
     }
 
