@@ -177,7 +177,7 @@ namespace coshell::contact
       if (dx)
         box.merge_with(box_of({x[v] + (*dx)[v]}, 0));
     }
-    box.extend(max_reach()); // as the shell trees are inflated
+    box.extend(max_reach()); // as far as any query box is inflated
     return box;
   }
 
@@ -285,8 +285,8 @@ namespace coshell::contact
   /// Largest fraction of the motion (shell by dx, obstacle by dX; either
   /// may be absent) that keeps every pair of this obstacle farther apart
   /// than its offset: additive CCD on the candidates whose swept boxes
-  /// meet. 'shell_tree' holds the shell triangles swept by dx, inflated
-  /// by at least this obstacle's offset.
+  /// meet. 'shell_tree' holds the boxes of the shell triangles swept by
+  /// dx; the obstacle's vertices query it with its largest offset.
   double Contact::ccd_fraction(const std::vector<Point<3>>     &x,
                                const std::vector<Tensor<1, 3>> *dx,
                                const Tree                      &shell_tree,
@@ -336,7 +336,8 @@ namespace coshell::contact
     const BoundingBox<3> shell_box = swept_shell_box(x, dx);
     for (unsigned int j = 0; j < X.size(); ++j)
     {
-      const BoundingBox<3> box = box_of({X[j], X[j] + along(dX, j)}, 0);
+      const BoundingBox<3> box =
+          box_of({X[j], X[j] + along(dX, j)}, largest_offset(o));
       if (!overlap(box, shell_box))
         continue;
       hits.clear();
@@ -369,9 +370,9 @@ namespace coshell::contact
     for (const unsigned v : shell_vertices_)
       for (unsigned int c = 0; c < 3; ++c)
         dx[v][c] = correction[model_.vertex_dofs(v)[c]];
-    // One tree of the swept shell triangles for every obstacle; inflated
-    // by the largest reach, a superset of each obstacle's candidates.
-    const Tree shell_tree = shell_triangle_tree(x, &dx, max_reach());
+    // One tree of the swept shell triangles for every obstacle and for
+    // self contact; the query boxes carry the offsets.
+    const Tree shell_tree = shell_triangle_tree(x, &dx, 0);
     double     fraction =
         parameters_.self_contact ? self_ccd_fraction(x, dx, shell_tree) : 1.0;
     if (parameters_.self_contact && parameters_.edge_edge_pairs)
@@ -440,8 +441,7 @@ namespace coshell::contact
       return;
     // The shell does not move within prepare(): one tree serves the
     // obstacles' step filter and the pair search.
-    const Tree shell_tree =
-        shell_triangle_tree(positions_, nullptr, max_reach());
+    const Tree shell_tree = shell_triangle_tree(positions_, nullptr, 0);
     advance_obstacles(positions_, shell_tree);
     find_pairs(positions_, shell_tree);
   }
@@ -568,8 +568,7 @@ namespace coshell::contact
     positions_       = shell_positions(state);
     saved_positions_ = positions_;
     saved_time_      = time;
-    find_pairs(positions_,
-               shell_triangle_tree(positions_, nullptr, max_reach()));
+    find_pairs(positions_, shell_triangle_tree(positions_, nullptr, 0));
     for (const Pair &pair : pairs_)
     {
       const auto   p        = pair_points(pair, positions_, other_side(pair));

@@ -227,8 +227,9 @@ namespace coshell::contact
     for (const unsigned v : shell_vertices_)
     {
       hits.clear();
-      shell_tree.query(bgi::intersects(box_of({x[v]}, 0)),
-                       std::back_inserter(hits));
+      shell_tree.query(
+          bgi::intersects(box_of({x[v]}, self_reach(v, activation))),
+          std::back_inserter(hits));
       for (const auto &hit : hits)
       {
         if (!self_pair_allowed(v, hit.second))
@@ -260,7 +261,7 @@ namespace coshell::contact
       if (!shell_box.point_inside(X[j]))
         continue;
       hits.clear();
-      shell_tree.query(bgi::intersects(box_of({X[j]}, 0)),
+      shell_tree.query(bgi::intersects(box_of({X[j]}, reach(o))),
                        std::back_inserter(hits));
       for (const auto &hit : hits)
       {
@@ -606,7 +607,8 @@ namespace coshell::contact
     for (unsigned int e = 0; e < shell_edges_.size(); ++e)
     {
       const auto [a, b] = shell_edges_[e];
-      edges_near(shell_tree, shell_triangle_edges_, {x[a], x[b]}, 0, edges);
+      edges_near(shell_tree, shell_triangle_edges_, {x[a], x[b]},
+                 self_edge_reach(e, activation), edges);
       for (const unsigned f : edges)
       {
         if (f <= e || !self_edge_pair_allowed(e, f))

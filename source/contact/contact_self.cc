@@ -120,7 +120,8 @@ namespace coshell::contact
     {
       const auto [a, b] = shell_edges_[e];
       edges_near(swept_shell_tree, shell_triangle_edges_,
-                 {x[a], x[b], x[a] + dx[a], x[b] + dx[b]}, 0, edges);
+                 {x[a], x[b], x[a] + dx[a], x[b] + dx[b]},
+                 self_edge_reach(e, 0), edges);
       for (const unsigned f : edges)
       {
         if (f <= e || !self_edge_pair_allowed(e, f))
@@ -134,6 +135,18 @@ namespace coshell::contact
       }
     }
     return fraction;
+  }
+
+  double Contact::self_reach(unsigned int v, double activation) const
+  {
+    return 0.5 * (model_.vertex_thickness(v) + largest_thickness_) + activation;
+  }
+
+  double Contact::self_edge_reach(unsigned int e, double activation) const
+  {
+    const auto [a, b] = shell_edges_[e];
+    return 0.25 * (model_.vertex_thickness(a) + model_.vertex_thickness(b)) +
+           0.5 * largest_thickness_ + activation;
   }
 
   double Contact::self_offset(unsigned int v, unsigned int t) const
@@ -161,8 +174,9 @@ namespace coshell::contact
     for (const unsigned v : shell_vertices_)
     {
       hits.clear();
-      swept_shell_tree.query(bgi::intersects(box_of({x[v], x[v] + dx[v]}, 0)),
-                             std::back_inserter(hits));
+      swept_shell_tree.query(
+          bgi::intersects(box_of({x[v], x[v] + dx[v]}, self_reach(v, 0))),
+          std::back_inserter(hits));
       for (const auto &hit : hits)
       {
         if (!self_pair_allowed(v, hit.second))

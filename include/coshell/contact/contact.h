@@ -372,6 +372,10 @@ namespace coshell::contact
     /// Self contact: the distance shell vertex v and shell triangle t
     /// keep (the mean of their half thicknesses, i.e. the sum of halves).
     double self_offset(unsigned int v, unsigned int t) const;
+    /// The largest self-contact offset of vertex v (of edge e) with any
+    /// triangle (edge), plus 'activation': how far its search reaches.
+    double self_reach(unsigned int v, double activation) const;
+    double self_edge_reach(unsigned int e, double activation) const;
     /// Whether v and t may form a self-contact pair: v is not a corner of
     /// t, and they are on different connected pieces or were at least
     /// Self contact exclusion times their offset apart in the reference
@@ -403,7 +407,7 @@ namespace coshell::contact
     static dealii::BoundingBox<3>
     box_of(std::initializer_list<dealii::Point<3>> points, double inflation);
     /// The box of the shell's vertices at x and x + dx, inflated by
-    /// max_reach() (holds every box of shell_triangle_tree(x, dx, ...)).
+    /// max_reach() (meets every query box that meets a shell triangle).
     dealii::BoundingBox<3>
     swept_shell_box(const std::vector<dealii::Point<3>>     &x,
                     const std::vector<dealii::Tensor<1, 3>> *dx) const;
@@ -411,7 +415,10 @@ namespace coshell::contact
            shell_positions(const model::ShellState &state) const;
     void   rebuild_tree(unsigned int obstacle);
     double max_reach() const;
-    /// Boxes of the shell triangles (swept by dx if given), inflated.
+    /// Boxes of the shell triangles (swept by dx if given), inflated. The
+    /// pair searches use them uninflated and inflate their query boxes
+    /// by what each query point must reach: a thin rim or haptic does not
+    /// search as far as the thick optic.
     Tree shell_triangle_tree(const std::vector<dealii::Point<3>>     &x,
                              const std::vector<dealii::Tensor<1, 3>> *dx,
                              double inflation) const;
@@ -438,7 +445,7 @@ namespace coshell::contact
                      const Coordinates12                   &gradient,
                      double                                 gap,
                      const model::DofBlock                 &block);
-    /// 'shell_tree': the shell triangles at x, inflated by max_reach().
+    /// 'shell_tree': the shell triangles' boxes at x.
     void find_pairs(const std::vector<dealii::Point<3>> &x,
                     const Tree                          &shell_tree);
     void find_shell_vertex_pairs(unsigned int                         obstacle,
