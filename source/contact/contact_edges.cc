@@ -202,6 +202,7 @@ namespace coshell::contact
   void Contact::edges_near(
       const Tree                                 &tree,
       const std::vector<std::array<unsigned, 3>> &triangle_edges,
+      EdgeMarks                                  &marks,
       std::initializer_list<Point<3>>             corners,
       double                                      inflation,
       std::vector<unsigned int>                  &edges)
@@ -210,11 +211,16 @@ namespace coshell::contact
     tree.query(bgi::intersects(box_of(corners, inflation)),
                std::back_inserter(hits));
     edges.clear();
+    // Neighbouring triangles share edges: take each once, without a sort
+    // (which cost more than the query itself).
+    ++marks.query;
     for (const auto &hit : hits)
       for (const unsigned f : triangle_edges[hit.second])
-        edges.push_back(f);
-    std::sort(edges.begin(), edges.end());
-    edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+        if (marks.last[f] != marks.query)
+        {
+          marks.last[f] = marks.query;
+          edges.push_back(f);
+        }
   }
 
   double Contact::edge_offset(unsigned int obstacle, unsigned int e) const
@@ -238,10 +244,11 @@ namespace coshell::contact
     { return d ? (*d)[i] : Tensor<1, 3>(); };
     double                    fraction = 1;
     std::vector<unsigned int> edges;
+    EdgeMarks                 marks(obstacle_edges_[o].size());
     for (unsigned int e = 0; e < shell_edges_.size(); ++e)
     {
       const auto [a, b] = shell_edges_[e];
-      edges_near(obstacle_tree, obstacle_triangle_edges_[o],
+      edges_near(obstacle_tree, obstacle_triangle_edges_[o], marks,
                  {x[a], x[b], x[a] + along(dx, a), x[b] + along(dx, b)},
                  edge_offset(o, e), edges);
       for (const unsigned f : edges)

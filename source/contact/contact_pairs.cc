@@ -557,12 +557,13 @@ namespace coshell::contact
   {
     const auto               &X = current_[o];
     std::vector<unsigned int> edges;
+    EdgeMarks                 marks(obstacle_edges_[o].size());
     for (unsigned int e = 0; e < shell_edges_.size(); ++e)
     {
       const auto [a, b]       = shell_edges_[e];
       const double edge_reach = pair_reach(edge_offset(o, e));
-      edges_near(obstacle_trees_[o], obstacle_triangle_edges_[o], {x[a], x[b]},
-                 edge_reach, edges);
+      edges_near(obstacle_trees_[o], obstacle_triangle_edges_[o], marks,
+                 {x[a], x[b]}, edge_reach, edges);
       for (const unsigned f : edges)
       {
         const auto [c, d] = obstacle_edges_[o][f];
@@ -604,10 +605,11 @@ namespace coshell::contact
     const double activation =
         parameters_.method == Method::barrier ? activation_ : 0.0;
     std::vector<unsigned int> edges;
+    EdgeMarks                 marks(shell_edges_.size());
     for (unsigned int e = 0; e < shell_edges_.size(); ++e)
     {
       const auto [a, b] = shell_edges_[e];
-      edges_near(shell_tree, shell_triangle_edges_, {x[a], x[b]},
+      edges_near(shell_tree, shell_triangle_edges_, marks, {x[a], x[b]},
                  self_edge_reach(e, activation), edges);
       for (const unsigned f : edges)
       {

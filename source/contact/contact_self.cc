@@ -76,10 +76,11 @@ namespace coshell::contact
          X, nullptr, parameters_.self_exclusion * largest_thickness_);
     excluded_edges_.assign(shell_edges_.size(), {});
     std::vector<unsigned int> near;
+    EdgeMarks                 marks(shell_edges_.size());
     for (unsigned int e = 0; e < shell_edges_.size(); ++e)
     {
       const auto [a, b] = shell_edges_[e];
-      edges_near(tree, shell_triangle_edges_, {X[a], X[b]}, 0, near);
+      edges_near(tree, shell_triangle_edges_, marks, {X[a], X[b]}, 0, near);
       for (const unsigned f : near)
       {
         const auto [c, d] = shell_edges_[f];
@@ -88,8 +89,9 @@ namespace coshell::contact
         const double reference = std::sqrt(
             segment_segment_distance(X[a], X[b], X[c], X[d], false).value);
         if (reference < parameters_.self_exclusion * self_edge_offset(e, f))
-          excluded_edges_[e].push_back(f); // sorted, as 'near' is
+          excluded_edges_[e].push_back(f);
       }
+      std::sort(excluded_edges_[e].begin(), excluded_edges_[e].end());
     }
   }
 
@@ -116,10 +118,11 @@ namespace coshell::contact
   {
     double                    fraction = 1;
     std::vector<unsigned int> edges;
+    EdgeMarks                 marks(shell_edges_.size());
     for (unsigned int e = 0; e < shell_edges_.size(); ++e)
     {
       const auto [a, b] = shell_edges_[e];
-      edges_near(swept_shell_tree, shell_triangle_edges_,
+      edges_near(swept_shell_tree, shell_triangle_edges_, marks,
                  {x[a], x[b], x[a] + dx[a], x[b] + dx[b]},
                  self_edge_reach(e, 0), edges);
       for (const unsigned f : edges)
@@ -224,9 +227,10 @@ namespace coshell::contact
       std::vector<std::array<unsigned int, 2>> &pairs) const
   {
     std::vector<unsigned int> edges;
+    EdgeMarks                 marks(shell_edges_.size());
     for (unsigned int e = 0; e < shell_edges_.size(); ++e)
     {
-      edges_near(tree, shell_triangle_edges_,
+      edges_near(tree, shell_triangle_edges_, marks,
                  {x[shell_edges_[e][0]], x[shell_edges_[e][1]]}, 0, edges);
       for (const unsigned f : edges)
         if (f > e && self_edge_pair_allowed(e, f))

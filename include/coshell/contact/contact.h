@@ -322,12 +322,22 @@ namespace coshell::contact
     void find_edge_pairs(unsigned int                         o,
                          const std::vector<dealii::Point<3>> &x,
                          PairSelector                        &selector);
+    /// Which edges a query of edges_near() has found already: the
+    /// number of the query that last found each edge.
+    struct EdgeMarks
+    {
+      explicit EdgeMarks(std::size_t n_edges) : last(n_edges, 0) {}
+      std::vector<unsigned int> last;
+      unsigned int              query = 0;
+    };
     /// The edges (by 'triangle_edges', the obstacle's or the shell's) of
     /// the triangles in 'tree' whose boxes meet the box of 'corners'
-    /// inflated by 'inflation' (sorted, each once).
+    /// inflated by 'inflation' (each once, in the order found; 'marks' has
+    /// one entry per edge of 'triangle_edges').
     static void
     edges_near(const Tree                                 &tree,
                const std::vector<std::array<unsigned, 3>> &triangle_edges,
+               EdgeMarks                                  &marks,
                std::initializer_list<dealii::Point<3>>     corners,
                double                                      inflation,
                std::vector<unsigned int>                  &edges);
