@@ -1,0 +1,141 @@
+#!/usr/bin/python3
+"""Refinement study of the IOL injection (prm/iol/injection.prm): the fold
+(stage 1, 1.3 s) and the first part of the push (stage 2 for --push
+seconds: the plunger drives the folded lens into the taper), one thread,
+at lens meshes from about 200 to about 8000 triangles (the lens's gmsh
+sizes halved from level to level). Per mesh: triangles, DoFs, steps,
+Newton iterations, wall time and real-time factor, the largest bending
+and membrane strains over the run, the largest plunger force (N, the
+plunger's contact force along the axis) and the plunger force at the end.
+Writes doc/performance/iol_refinement.csv after every mesh (a run cut off
+by --timeout leaves the finer rows out) and iol_refinement.png, stamped
+with machine and commit.
+
+  /usr/bin/python3 doc/scripts/iol_refinement.py --coshell build/coshell \\
+      [--meshes 4] [--push 1.0] [--timeout 5400]
+"""
+import argparse
+import csv
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from doc_common import ROOT, finish_plot, machine_and_commit, write_csv  # noqa: E402
+
+import matplotlib  # noqa: E402
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+OUT = os.path.join(ROOT, "doc", "performance")
+SCENE = os.path.join(ROOT, "prm", "iol", "injection.prm")
+# (optic, haptic) gmsh sizes in mm: the ctest lens, the default lens, then
+# the default halved and quartered.
+MESHES = [(0.9, 0.35), (0.55, 0.22), (0.275, 0.11), (0.1375, 0.055)]
+PLUNGER = "2"  # the plunger is Contact/Obstacle 2 of the scene
+
+
+def plunger_forces(output):
+    """Times and axial forces (N) of the plunger on the lens."""
+    with open(os.path.join(output, "contact_forces.csv")) as f:
+        rows = [r for r in csv.DictReader(f) if r["obstacle"] == PLUNGER]
+    # The shell's force on the plunger is -x while it pushes the lens +x.
+    return [(float(r["time"]), -float(r["fx"])) for r in rows]
+
+
+def run(sizes, coshell, push, timeout, work):
+    optic, haptic = sizes
+    output = os.path.join(work, f"lens_{optic}_{haptic}")
+    command = [coshell, SCENE, "--output", output]
+    for assignment in [
+            f"Mesh/Gmsh parameters=optic_mesh_size = {optic}, "
+            f"haptic_mesh_size = {haptic}",
+            f"Stage 2/Duration={push}", "Stage 3/Analysis type=none",
+            "Parallel/Threads=1"]:
+        command += ["--set", assignment]
+    start = time.time()
+    subprocess.run(command, check=True, stdout=subprocess.DEVNULL,
+                   env=dict(os.environ, OPENBLAS_NUM_THREADS="1"),
+                   timeout=timeout)
+    with open(os.path.join(output, "summary.json")) as f:
+        summary = json.load(f)
+    forces = plunger_forces(output)
+    seconds = summary["time_stepping_s"]
+    return {
+        "optic_mesh_size_mm": optic, "haptic_mesh_size_mm": haptic,
+        "triangles": summary["n_cells"], "dofs": summary["n_dofs"],
+        "steps": summary["steps"],
+        "newton_iterations": summary["newton_iterations"],
+        "wall_time_s": round(seconds["total"], 1),
+        "process_s": round(time.time() - start, 1),
+        "real_time_factor": round(summary["real_time_factor"], 5),
+        "ms_per_iteration": round(
+            1e3 * seconds["total"] / summary["newton_iterations"], 1),
+        "max_bending_strain": round(summary["qoi"]["max_bending_strain"], 5),
+        "max_membrane_strain": round(summary["qoi"]["max_membrane_strain"], 5),
+        "max_plunger_force_mn": round(1e3 * max(f for _, f in forces), 3),
+        "final_plunger_force_mn": round(1e3 * forces[-1][1], 3),
+        "smallest_gap_mm": summary["contact"]["smallest_gap"]}
+
+
+def plot(rows, push, commit):
+    figure, axes = plt.subplots(1, 3, figsize=(11, 3.6))
+    triangles = [r["triangles"] for r in rows]
+    series = [
+        (axes[0], [("max_plunger_force_mn", "largest"),
+                   ("final_plunger_force_mn", f"at t = {1.3 + push:g} s")],
+         "plunger force (mN)"),
+        (axes[1], [("max_bending_strain", "bending"),
+                   ("max_membrane_strain", "membrane")],
+         "largest strain"),
+        (axes[2], [("real_time_factor", "real-time factor")],
+         "real-time factor (1 thread)")]
+    for ax, columns, ylabel in series:
+        for column, label in columns:
+            ax.plot(triangles, [r[column] for r in rows], "o-", label=label)
+        ax.set_xscale("log")
+        ax.set_xlabel("lens triangles")
+        ax.set_ylabel(ylabel)
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=7)
+    axes[2].set_yscale("log")
+    finish_plot(figure, axes[1], "lens triangles", "largest strain",
+                f"IOL fold and {push:g} s of push, refinement "
+                f"({commit})", os.path.join(OUT, "iol_refinement.png"))
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__)
+    parser.add_argument("--coshell", required=True)
+    parser.add_argument("--meshes", type=int, default=len(MESHES))
+    parser.add_argument("--push", type=float, default=1.0,
+                        help="seconds of stage 2 (the plunger at 5 mm/s)")
+    parser.add_argument("--timeout", type=float, default=5400,
+                        help="seconds per mesh; finer meshes are skipped "
+                        "after one runs out")
+    args = parser.parse_args()
+    machine, commit = machine_and_commit()
+    header = [f"machine: {machine}; commit {commit}",
+              f"prm/iol/injection.prm: stage 1 (fold, 1.3 s) and "
+              f"{args.push:g} s of stage 2 (push), Parallel/Threads = 1, "
+              "OPENBLAS_NUM_THREADS = 1; meshes one after another"]
+    rows = []
+    os.makedirs(OUT, exist_ok=True)
+    with tempfile.TemporaryDirectory() as work:
+        for sizes in MESHES[:args.meshes]:
+            try:
+                rows.append(run(sizes, os.path.abspath(args.coshell),
+                                args.push, args.timeout, work))
+            except subprocess.TimeoutExpired:
+                print(f"lens {sizes}: no result within {args.timeout} s")
+                break
+            print(rows[-1], flush=True)
+            write_csv(os.path.join(OUT, "iol_refinement.csv"), rows, header)
+    plot(rows, args.push, commit)
+
+
+if __name__ == "__main__":
+    main()
