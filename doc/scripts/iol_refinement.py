@@ -8,8 +8,9 @@ Newton iterations, wall time and real-time factor, the largest bending
 and membrane strains over the run, the largest plunger force (N, the
 plunger's contact force along the axis) and the plunger force at the end.
 Writes doc/performance/iol_refinement.csv after every mesh (a run cut off
-by --timeout leaves the finer rows out) and iol_refinement.png, stamped
-with machine and commit.
+by --timeout leaves the finer rows out; a failed run is a row with the
+error message, after which the finer meshes are not run) and
+iol_refinement.png, stamped with machine and commit.
 
   /usr/bin/python3 doc/scripts/iol_refinement.py --coshell build/coshell \\
       [--meshes 4] [--push 1.0] [--timeout 5400]
@@ -46,6 +47,14 @@ def plunger_forces(output):
     return [(float(r["time"]), -float(r["fx"])) for r in rows]
 
 
+def largest_strains(output):
+    """The largest bending and membrane strains over all steps."""
+    with open(os.path.join(output, "time_history.csv")) as f:
+        rows = list(csv.DictReader(f))
+    return [max(float(r[column]) for r in rows)
+            for column in ("max_bending_strain", "max_membrane_strain")]
+
+
 def run(sizes, coshell, push, timeout, work):
     optic, haptic = sizes
     output = os.path.join(work, f"lens_{optic}_{haptic}")
@@ -57,12 +66,18 @@ def run(sizes, coshell, push, timeout, work):
             "Parallel/Threads=1"]:
         command += ["--set", assignment]
     start = time.time()
-    subprocess.run(command, check=True, stdout=subprocess.DEVNULL,
-                   env=dict(os.environ, OPENBLAS_NUM_THREADS="1"),
-                   timeout=timeout)
+    process = subprocess.run(command, stdout=subprocess.DEVNULL,
+                             stderr=subprocess.PIPE, text=True,
+                             env=dict(os.environ, OPENBLAS_NUM_THREADS="1"),
+                             timeout=timeout)
+    if process.returncode != 0:  # a row that says so, and the message
+        return {"optic_mesh_size_mm": optic, "haptic_mesh_size_mm": haptic,
+                "process_s": round(time.time() - start, 1),
+                "status": process.stderr.strip().splitlines()[-1]}
     with open(os.path.join(output, "summary.json")) as f:
         summary = json.load(f)
     forces = plunger_forces(output)
+    bending, membrane = largest_strains(output)
     seconds = summary["time_stepping_s"]
     return {
         "optic_mesh_size_mm": optic, "haptic_mesh_size_mm": haptic,
@@ -74,15 +89,17 @@ def run(sizes, coshell, push, timeout, work):
         "real_time_factor": round(summary["real_time_factor"], 5),
         "ms_per_iteration": round(
             1e3 * seconds["total"] / summary["newton_iterations"], 1),
-        "max_bending_strain": round(summary["qoi"]["max_bending_strain"], 5),
-        "max_membrane_strain": round(summary["qoi"]["max_membrane_strain"], 5),
+        "max_bending_strain": round(bending, 5),
+        "max_membrane_strain": round(membrane, 5),
         "max_plunger_force_mn": round(1e3 * max(f for _, f in forces), 3),
         "final_plunger_force_mn": round(1e3 * forces[-1][1], 3),
-        "smallest_gap_mm": summary["contact"]["smallest_gap"]}
+        "smallest_gap_mm": summary["contact"]["smallest_gap"],
+        "status": "ok"}
 
 
 def plot(rows, push, commit):
     figure, axes = plt.subplots(1, 3, figsize=(11, 3.6))
+    rows = [r for r in rows if r["status"] == "ok"]
     triangles = [r["triangles"] for r in rows]
     series = [
         (axes[0], [("max_plunger_force_mn", "largest"),
@@ -133,7 +150,10 @@ def main():
                 print(f"lens {sizes}: no result within {args.timeout} s")
                 break
             print(rows[-1], flush=True)
-            write_csv(os.path.join(OUT, "iol_refinement.csv"), rows, header)
+            write_csv(os.path.join(OUT, "iol_refinement.csv"), rows, header,
+                      list(dict.fromkeys(k for r in rows for k in r)))
+            if rows[-1]["status"] != "ok":
+                break  # a finer lens would take longer to fail as well
     plot(rows, args.push, commit)
 
 
