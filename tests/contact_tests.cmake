@@ -63,6 +63,18 @@ coshell_contact_test(contact.incline_friction.frictionless ${incline}
 coshell_contact_test(contact.incline_friction.sticking ${incline}
   ARGS --set "Loads/Gravity=1703.489, 0, -9660.965"
   --change centre_ux 0.015 0.04 1e-4 --gap-nonnegative)
+# The same two with edge-edge pairs, which now carry the obstacle's
+# friction too: a flat plate on a flat plane feels both kinds of pair
+# (IPC counts both), and when the edge pairs were frictionless part of
+# the normal force escaped friction (sliding 2002 mm/s^2, 32 % fast, and
+# no sticking: 0.22 mm of creep).
+coshell_contact_test(contact.incline_friction.sliding_edge_edge ${incline}
+  ARGS --set "Contact/Edge-edge pairs=true"
+  --slope centre_ux 0.01 0.04 1511.54 0.02 --gap-nonnegative)
+coshell_contact_test(contact.incline_friction.sticking_edge_edge ${incline}
+  ARGS --set "Contact/Edge-edge pairs=true"
+  --set "Loads/Gravity=1703.489, 0, -9660.965"
+  --change centre_ux 0.015 0.04 1e-4 --gap-nonnegative)
 
 # Funnel: a plunger pushes a 4 mm strip through a cone into a 3 mm tube
 # (dynamics, 0.85 s). The barrier keeps every iterate of every step apart
@@ -162,6 +174,18 @@ coshell_contact_test(contact.hard.knife_edge_edge ${knife}
 coshell_contact_test(contact.hard.knife_without_edge_pairs ${knife}
   ARGS --set "Contact/Edge-edge pairs=false" --edge-clearance -1 0
   --force-range 1 fz 0 0)
+# Friction on edge-edge pairs: the knife (mu = 0.3) pressed 0.38 down in
+# the first half of the path, then slid 1 mm along its edge at that
+# depth, 0.1 mm per load step (2000 times the stiction length, 1e-3 x
+# 0.05). Its edge touches the plate through edge-edge pairs only, so
+# Coulomb's law, ft = mu fn at the last step, tests their friction:
+# -0.3029 measured, within 2 % (the lagged normal forces of pairs that
+# entered that step, and a 5 N lateral force of the frictionless pairs
+# at the plate's border, 0.4 %, both count).
+coshell_contact_test(contact.hard.knife_edge_edge_friction ${knife}
+  ARGS --set "Contact/Obstacle 1/Friction coefficient=0.3"
+  --set "Contact/Obstacle 1/Translation=3.1$<SEMICOLON> max(0, 2 * t - 1)$<SEMICOLON> 0.08 - 0.38 * min(2 * t, 1)"
+  --gap-nonnegative --force-ratio 1 fy fz -0.3 0.02)
 
 # Bad input names the obstacle and what is wrong with it.
 set(plane_scene ${COSHELL_PRM}/contact/plate_on_plane.prm)
@@ -177,6 +201,10 @@ coshell_bad_input_test(contact_shell_starts_inside
 coshell_bad_input_test(contact_negative_friction
   "Contact/Obstacle 1 .'plane'.: Friction coefficient: -0.1 is negative"
   ${plane_scene} --set "Contact/Obstacle 1/Friction coefficient=-0.1")
+coshell_bad_input_test(contact_negative_self_friction
+  "Contact/Self contact friction coefficient: -0.2 is negative"
+  ${COSHELL_PRM}/contact/self_friction_incline.prm
+  --set "Contact/Self contact friction coefficient=-0.2")
 coshell_bad_input_test(contact_unparsable_motion
   "Contact/Obstacle 1/Translation: cannot parse '0.*-0.3..'"
   ${plane_scene} --set "Contact/Obstacle 1/Translation=0$<SEMICOLON> 0$<SEMICOLON> -0.3**")
@@ -198,6 +226,20 @@ coshell_scene_test(contact.self.plate_on_plate contact/plate_on_plate.prm
        --value center_deflection -0.000126532 1e-3)
 coshell_contact_test(contact.self.plate_on_plate.gap contact/plate_on_plate.prm
   ARGS --set ${no_vtu} --gap-nonnegative --gap-below 0.001)
+# Friction of the shell against itself (Self contact friction
+# coefficient): the incline's three cases with a clamped lower plate of
+# the same shell as the plane (mu = 0.2): sliding at g (sin theta - mu
+# cos theta) = 1511.54 mm/s^2 (measured 8.5e-6 off), frictionless at
+# g sin theta (1.6e-6 off), sticking at 10 degrees (1.6e-5 mm of creep).
+set(self_incline contact/self_friction_incline.prm)
+coshell_contact_test(contact.self.friction_incline.sliding ${self_incline}
+  ARGS --slope centre_ux 0.01 0.04 1511.54 0.02 --gap-nonnegative)
+coshell_contact_test(contact.self.friction_incline.frictionless ${self_incline}
+  ARGS --set "Contact/Self contact friction coefficient=0"
+  --slope centre_ux 0.01 0.04 3355.217 0.02 --gap-nonnegative)
+coshell_contact_test(contact.self.friction_incline.sticking ${self_incline}
+  ARGS --set "Loads/Gravity=1703.489, 0, -9660.965"
+  --change centre_ux 0.015 0.04 1e-4 --gap-nonnegative)
 # Self contact roll-up: an end moment winds a strip (EI = 1, h = 0.05,
 # rolling length 6) past a full turn onto its own clamped tail. Stage 1
 # (statics, M = 0.975 x the full-turn moment): the tip rests on the tail;

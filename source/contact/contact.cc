@@ -482,7 +482,7 @@ namespace coshell::contact
 
   void Contact::save()
   {
-    retrying_ = false;
+    projecting_this_step_ = false;
     trial_detection_.reset();
     for (unsigned int o = 0; o < obstacle_work_.size(); ++o)
       obstacle_work_[o] += step_work(o);
@@ -546,13 +546,22 @@ namespace coshell::contact
 
   void Contact::restore()
   {
-    retrying_ = parameters_.project_tangent_on_retry;
+    projecting_this_step_ = parameters_.project_tangent_on_retry;
     trial_detection_.reset();
     if (saved_.empty())
       return;
     current_ = saved_;
     for (unsigned int o = 0; o < current_.size(); ++o)
       rebuild_tree(o);
+  }
+
+  bool Contact::use_projected_tangent()
+  {
+    if (!parameters_.project_tangent_on_stall || parameters_.project_tangent ||
+        projecting_this_step_)
+      return false;
+    projecting_this_step_ = true;
+    return true;
   }
 
   void Contact::check_initial_configuration(const model::ShellState &state,

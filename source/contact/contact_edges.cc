@@ -134,7 +134,8 @@ namespace coshell::contact
       }
     }
     PairEnergy energy;
-    energy.value = weight * m * phi.value;
+    energy.value     = weight * m * phi.value;
+    energy.mollifier = m;
     for (unsigned int i = 0; i < 12; ++i)
     {
       const double dm_i  = dm_dc * c.gradient[i];

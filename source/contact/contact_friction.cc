@@ -4,7 +4,9 @@
 // F = -mu lambda f1(|u|) u / |u|, with f1(x) = 2x/eps - x^2/eps^2 below
 // eps = (stiction velocity) * (step duration) and 1 above. The pairs, their
 // normal force lambda, normal n and closest point's weights are those of
-// the last converged state (lagged), fixed through the step.
+// the last converged state (lagged), fixed through the step. The same for
+// shell against obstacle and against itself, vertex-triangle and edge-edge
+// pairs: only the weights of the closest points differ.
 
 #include <coshell/contact/contact.h>
 
@@ -52,11 +54,32 @@ namespace coshell::contact
     }
   } // namespace
 
-  Tensor<1, 3> closest_point(const std::array<Point<3>, 4> &points,
-                             const SquaredDistance         &s)
+  std::array<double, 4>
+  closest_point_weights(bool edge_edge, const std::array<double, 2> &parameters)
   {
-    const double b = s.parameters[0], c = s.parameters[1];
-    return (1 - b - c) * points[1] + b * points[2] + c * points[3];
+    const double a = parameters[0], b = parameters[1];
+    if (edge_edge)
+      return {1 - a, a, -(1 - b), -b};
+    return {1, -(1 - a - b), -a, -b};
+  }
+
+  Tensor<1, 3> closest_point_difference(bool edge_edge,
+                                        const std::array<Point<3>, 4> &points,
+                                        const std::array<double, 2> &parameters)
+  {
+    const std::array<double, 4> w =
+        closest_point_weights(edge_edge, parameters);
+    Tensor<1, 3> difference;
+    for (unsigned int k = 0; k < 4; ++k)
+      difference += w[k] * points[k];
+    return difference;
+  }
+
+  double Contact::friction_coefficient(const Pair &pair) const
+  {
+    return pair.self
+               ? parameters_.self_friction_coefficient
+               : parameters_.obstacles[pair.obstacle].friction_coefficient;
   }
 
   /// Friction acts on the pairs that were in contact at the last
@@ -71,7 +94,7 @@ namespace coshell::contact
     model::DofBlock block;
     for (const NormalForce &lagged : lagged_normal_forces_)
     {
-      if (parameters_.obstacles[lagged.pair.obstacle].friction_coefficient == 0)
+      if (friction_coefficient(lagged.pair) == 0)
         continue;
       pair_dofs(lagged.pair, block);
       block.vector = 0;
@@ -83,57 +106,57 @@ namespace coshell::contact
     }
   }
 
+  /// The same for every kind of pair: u is the tangential part of the
+  /// step's relative displacement of the first primitive's closest point
+  /// against the second's, sum_k w_k (x_k - x_k^saved) with the lagged
+  /// weights, and each point k takes w_k times the force.
   void Contact::add_friction(const NormalForce &lagged,
                              bool               with_tangent,
                              model::DofBlock   &block)
   {
     const Pair  &pair = lagged.pair;
-    const double mu = parameters_.obstacles[pair.obstacle].friction_coefficient;
-    const double eps = parameters_.stiction_velocity *
+    const double mu   = friction_coefficient(pair);
+    const double eps  = parameters_.stiction_velocity *
                        std::max(target_time_ - saved_time_, 0.0);
     if (!(eps > 0) || lagged.force == 0)
       return;
-    const double                  normal_force = lagged.force;
-    const std::array<double, 2>  &closest      = lagged.closest;
     const Tensor<1, 3>            normal = lagged.normal / lagged.normal.norm();
     const std::array<Point<3>, 4> points =
-        pair_points(pair, positions_, current_[pair.obstacle]);
-    // Weights of the four points in the relative displacement of the
-    // point (index 0) against the closest point of the triangle.
-    const std::array<double, 4>   w = {1, -(1 - closest[0] - closest[1]),
-                                       -closest[0], -closest[1]};
+        pair_points(pair, positions_, other_side(pair));
     const std::array<Point<3>, 4> before =
-        pair_points(pair, saved_positions_, saved_[pair.obstacle]);
+        pair_points(pair, saved_positions_, saved_other_side(pair));
+    const std::array<double, 4> w =
+        closest_point_weights(pair.edge_edge, lagged.closest);
     Tensor<1, 3> relative;
     for (unsigned int k = 0; k < 4; ++k)
       relative += w[k] * (points[k] - before[k]);
     const Tensor<1, 3> u      = relative - (relative * normal) * normal;
-    const double       x      = u.norm();
-    const auto [ratio, slope] = friction_ratio(x, eps);
-    const Tensor<1, 3> force  = -mu * normal_force * ratio * u; // on point 0
+    const auto [ratio, slope] = friction_ratio(u.norm(), eps);
+    // On the first primitive's closest point; point k takes w_k of it.
+    const Tensor<1, 3> force = -mu * lagged.force * ratio * u;
 
-    // Shell points: the point (type A) or the triangle (type B).
-    const unsigned int first = pair.shell_vertex_side ? 0 : 1;
-    const unsigned int n     = pair.shell_vertex_side ? 1 : 3;
+    const ShellCoordinates shell = shell_coordinates(pair);
+    const unsigned int     first = shell.first / 3;
+    const unsigned int     n     = (shell.last - shell.first) / 3;
     for (unsigned int i = 0; i < n; ++i)
       for (unsigned int c = 0; c < 3; ++c)
         block.vector[3 * i + c] += w[first + i] * force[c];
-    ObstacleLoad      &load = loads_[pair.obstacle];
-    const Tensor<1, 3> on_obstacle =
-        pair.shell_vertex_side ? -force : Tensor<1, 3>(force);
-    load.force += on_obstacle;
-    // Applied at the obstacle's side of the pair: its closest point, or
-    // its vertex.
-    Tensor<1, 3> at = points[0];
-    if (pair.shell_vertex_side)
+    if (!pair.self)
     {
-      at = Tensor<1, 3>();
-      for (unsigned int k = 1; k < 4; ++k)
-        at -= w[k] * points[k];
+      // The obstacle's share, applied at its closest point.
+      ObstacleLoad &load = loads_[pair.obstacle];
+      Tensor<1, 3>  reaction, at;
+      for (unsigned int k = 0; k < 4; ++k)
+        if (on_obstacle(pair, k))
+        {
+          reaction += w[k] * force;
+          at += std::abs(w[k]) * points[k];
+        }
+      load.force += reaction;
+      load.moment += cross_product_3d(at, reaction);
     }
-    load.moment += cross_product_3d(at, on_obstacle);
     if (with_tangent)
-      add_friction_tangent(w, first, n, mu * normal_force, {ratio, slope}, u,
+      add_friction_tangent(w, first, n, mu * lagged.force, {ratio, slope}, u,
                            normal, block.matrix);
   }
 } // namespace coshell::contact

@@ -162,6 +162,11 @@ namespace coshell::contact
     return true;
   }
 
+  bool ContactContribution::use_convex_tangent()
+  {
+    return contact_.use_projected_tangent();
+  }
+
   std::string ContactContribution::failure_context() const
   {
     return contact_.squeeze_report();

@@ -439,12 +439,12 @@ namespace coshell::contact
       if (!pair.self)
         potential_per_obstacle_[pair.obstacle] += energy.value;
       // |d E / d distance| is the normal force of the pair, which
-      // friction will use in the next step (self contact and edge-edge
-      // pairs are frictionless).
-      if (!pair.self && !pair.edge_edge)
-        normal_forces_.push_back({pair, weight * std::abs(phi.first),
-                                  s.parameters,
-                                  points[0] - closest_point(points, s)});
+      // friction will use in the next step.
+      if (friction_coefficient(pair) > 0)
+        normal_forces_.push_back(
+            {pair, weight * energy.mollifier * std::abs(phi.first),
+             s.parameters,
+             closest_point_difference(pair.edge_edge, points, s.parameters)});
       if (pending_ && !pair.self)
         anticipate_obstacle(pair, energy, block);
       sink(block);
@@ -495,7 +495,7 @@ namespace coshell::contact
     for (unsigned int i = 0; i < n; ++i)
       for (unsigned int j = 0; j < n; ++j)
         h[i * n + j] = energy.hessian[first + i][first + j];
-    if (parameters_.project_tangent || retrying_)
+    if (parameters_.project_tangent || projecting_this_step_)
       project_to_positive_semidefinite(h, n);
     for (unsigned int i = 0; i < n; ++i)
       for (unsigned int j = 0; j < n; ++j)

@@ -49,6 +49,15 @@ namespace coshell::contact
                       "succeeds), whose Newton steps descend where the "
                       "exact ones, faster elsewhere, can stall against "
                       "the collision filter.");
+    prm.declare_entry("Projected tangent on stall", "false", Patterns::Bool(),
+                      "With Projected tangent = false: once Newton's "
+                      "corrections in an attempt have climbed the energy "
+                      "(du.r < 0, the exact Hessian indefinite along them) "
+                      "Nonlinear solver/Climbs before convex tangent times, "
+                      "the last is discarded and the rest of the attempt "
+                      "uses the projected Hessians (Newton's steps then "
+                      "descend). A retry starts with the exact ones again "
+                      "unless Projected tangent on retry.");
     prm.declare_entry(
         "Pairs", "all", Patterns::Selection("all|local minima"),
         "all: every shell vertex-obstacle triangle and obstacle vertex-shell "
@@ -67,7 +76,8 @@ namespace coshell::contact
         "pseudo-time of a step stands for its duration.");
     prm.declare_entry(
         "Edge-edge pairs", "false", Patterns::Bool(),
-        "Also keep shell edges from obstacle edges (frictionless), so that "
+        "Also keep shell edges from obstacle edges (and, with Self "
+        "contact, from shell edges), with the same friction, so that "
         "an obstacle edge cannot cut through a shell edge between their "
         "vertices; nearly parallel edges fade out smoothly (IPC's "
         "mollifier). false: vertex-triangle pairs only.");
@@ -75,7 +85,13 @@ namespace coshell::contact
         "Self contact", "false", Patterns::Bool(),
         "Also keep the shell from itself: shell vertices against shell "
         "triangles, at least the mean of their half thicknesses apart, by "
-        "the same barrier or penalty and step filter (frictionless).");
+        "the same barrier or penalty and step filter, and friction with "
+        "Self contact friction coefficient.");
+    prm.declare_entry("Self contact friction coefficient", "0",
+                      Patterns::Double(),
+                      "Coulomb friction coefficient mu of the shell against "
+                      "itself (dimensionless, >= 0; 0: frictionless, and "
+                      "no cost).");
     prm.declare_entry(
         "Self contact exclusion", "2", Patterns::Double(1),
         "Self contact ignores a vertex-triangle pair of the same connected "
@@ -102,11 +118,21 @@ namespace coshell::contact
     penalty_smoothing        = prm.get_double("Penalty smoothing");
     project_tangent          = prm.get_bool("Projected tangent");
     project_tangent_on_retry = prm.get_bool("Projected tangent on retry");
+    project_tangent_on_stall = prm.get_bool("Projected tangent on stall");
     stiction_velocity        = prm.get_double("Stiction velocity");
     local_minima_only        = prm.get("Pairs") == "local minima";
     self_contact             = prm.get_bool("Self contact");
     edge_edge_pairs          = prm.get_bool("Edge-edge pairs");
     self_exclusion           = prm.get_double("Self contact exclusion");
+    self_friction_coefficient =
+        prm.get_double("Self contact friction coefficient");
+    if (!(self_friction_coefficient >= 0))
+    {
+      const std::string value = prm.get("Self contact friction coefficient");
+      prm.leave_subsection();
+      throw std::runtime_error("Contact/Self contact friction coefficient: " +
+                               value + " is negative; it must be >= 0");
+    }
     try
     {
       // Off costs nothing: the obstacle meshes are not even read.

@@ -168,6 +168,11 @@ namespace coshell::contact
     return pair.self ? positions_ : current_[pair.obstacle];
   }
 
+  const std::vector<Point<3>> &Contact::saved_other_side(const Pair &pair) const
+  {
+    return pair.self ? saved_positions_ : saved_[pair.obstacle];
+  }
+
   double Contact::self_ccd_fraction(const std::vector<Point<3>>     &x,
                                     const std::vector<Tensor<1, 3>> &dx,
                                     const Tree &swept_shell_tree) const

@@ -353,6 +353,14 @@ namespace coshell::model
     return true;
   }
 
+  bool ShellProblem::use_convex_tangent()
+  {
+    bool changed = false;
+    for (const auto &contribution : contributions_)
+      changed = contribution->use_convex_tangent() || changed;
+    return changed;
+  }
+
   std::string ShellProblem::failure_context() const
   {
     std::string context;

@@ -100,6 +100,14 @@ namespace coshell::solvers
                       "energy slope, Crisfield 1991). Off by default: on "
                       "large-rotation steps the full Newton step, though it "
                       "raises the residual at first, converges faster.");
+    prm.declare_entry(
+        "Climbs before convex tangent", "3", Patterns::Integer(1),
+        "Dimensionless. After this many corrections of an attempt have "
+        "climbed the energy (du.r < 0: the tangent is indefinite along "
+        "them), Newton asks the problem for a convex tangent and, if it has "
+        "one (contact with Projected tangent on stall), discards the "
+        "correction and solves again with it. Three on the IOL injection: "
+        "1 switched too early (a fifth more iterations on the fold).");
     prm.declare_entry("Divergence limit", "1e8", Patterns::Double(1),
                       "Dimensionless: a relative residual |r|/F above this "
                       "ends the attempt as diverged.");
@@ -114,6 +122,8 @@ namespace coshell::solvers
     correction_tolerance = prm.get_double("Correction tolerance");
     line_search          = prm.get_bool("Line search");
     divergence_limit     = prm.get_double("Divergence limit");
+    climbs_before_convex_tangent =
+        prm.get_integer("Climbs before convex tangent");
   }
 
   Newton::Newton(const NewtonParameters &parameters,
@@ -182,6 +192,7 @@ namespace coshell::solvers
     double               first_energy     = 0;
     bool                 correction_small = false;
     CorrectionRecord     corrections;
+    unsigned int         climbs = 0; // corrections that climbed the energy
     for (unsigned int iteration = 0;; ++iteration)
     {
       problem.evaluate(residual, &tangent);
@@ -218,9 +229,13 @@ namespace coshell::solvers
             problem.failure_context());
       Vector<double> du = correction(problem, tangent, residual);
       // The energy slope along du; negative: du climbs the energy.
-      const double slope  = du * residual;
+      const double slope = du * residual;
+      climbs += slope < 0;
+      if (slope < 0 && climbs >= parameters_.climbs_before_convex_tangent &&
+          problem.use_convex_tangent())
+        continue; // same iterate, a tangent whose correction descends
       const double energy = std::abs(slope);
-      if (iteration == 0)
+      if (first_energy == 0)
         first_energy = std::max(energy, 1e-300);
       const bool direction_small =
           parameters_.correction_tolerance > 0 &&

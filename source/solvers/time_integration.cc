@@ -161,6 +161,10 @@ namespace coshell::solvers
       {
         return problem_.symmetric_tangent();
       }
+      bool use_convex_tangent() override
+      {
+        return problem_.use_convex_tangent();
+      }
       std::string failure_context() const override
       {
         return problem_.failure_context();

@@ -22,6 +22,9 @@ outputs) against references given here.
      [--max-abs QOI LIMIT]  |QOI| stays below LIMIT over the run
      [--force-range OBSTACLE COMPONENT LO HI]  the last step's force on
                           obstacle OBSTACLE (1-based) lies in [LO, HI]
+     [--force-ratio OBSTACLE NUM DEN VALUE RTOL]  the last step's force
+                          components NUM / DEN on obstacle OBSTACLE are
+                          VALUE within RTOL of |VALUE| (Coulomb: ft / fn)
      [--summary KEY LO HI]  summary.json's contact[KEY] lies in [LO, HI]
      [--edge-clearance LO HI]  at the end, the height of the obstacles'
                           lowest edge (a knife's) over the shell's deformed
@@ -121,6 +124,7 @@ def main():
     parser.add_argument("--max-abs", nargs=2, action="append", default=[])
     parser.add_argument("--change", nargs=4, action="append", default=[])
     parser.add_argument("--force-range", nargs=4, action="append", default=[])
+    parser.add_argument("--force-ratio", nargs=5, action="append", default=[])
     parser.add_argument("--summary", nargs=3, action="append", default=[])
     parser.add_argument("--edge-clearance", nargs=2, type=float)
     parser.add_argument("--energy-balance", type=float)
@@ -201,6 +205,16 @@ def main():
         measured.append((f"obstacle_{obstacle}_{component}", value))
         check(float(lo) <= value <= float(hi),
               f"obstacle {obstacle} {component} = {value:.6g} in [{lo}, {hi}]")
+    for obstacle, numerator, denominator, value, rtol in args.force_ratio:
+        def component(name):
+            return sum(float(r[name]) for r in last
+                       if int(float(r["obstacle"])) == int(obstacle))
+        ratio = component(numerator) / component(denominator)
+        measured.append((f"obstacle_{obstacle}_{numerator}_over_{denominator}",
+                         ratio))
+        check(abs(ratio - float(value)) <= float(rtol) * abs(float(value)),
+              f"obstacle {obstacle} {numerator}/{denominator} = {ratio:.6g}, "
+              f"expected {value} within {rtol}")
     if args.summary:
         with open(os.path.join(args.output, "summary.json")) as f:
             summary = json.load(f)

@@ -137,6 +137,26 @@ namespace
     model::ShellState       state{model, false};
   };
 
+  /// Action and reaction at time 1: the force on the plate's one
+  /// obstacle balances the shell's, friction included. Assembles anew
+  /// (finite differences leave the last assembly at a perturbed state).
+  const contact::ObstacleLoad &
+  expect_action_and_reaction(const contact::Contact       &contact,
+                             contact::ContactContribution &contribution,
+                             UnitPlate                    &plate,
+                             unsigned int                  n)
+  {
+    const Assembled      at = assemble(contribution, plate.state, 1, n);
+    dealii::Tensor<1, 3> on_shell;
+    for (unsigned int v = 0; v < plate.surface.n_vertices(); ++v)
+      for (unsigned int c = 0; c < 3; ++c)
+        on_shell[c] += at.force[plate.model.vertex_dofs(v)[c]];
+    const auto &load = contact.obstacle_loads()[0];
+    for (unsigned int c = 0; c < 3; ++c)
+      EXPECT_NEAR(load.force[c], -on_shell[c], 1e-12 * on_shell.norm());
+    return load;
+  }
+
   /// Plate [0, 2]^2, h = 1 (offset 0.5), over the plane z = -0.55 (gap
   /// 0.05 < activation 0.1); after a converged state at t = 0 the plate is
   /// moved sideways and down, and the tangent at t = 1 is checked.
@@ -165,16 +185,9 @@ namespace
       move[dofs[2]]    = -0.01 - 0.002 * (v % 2);
     }
     state.apply_increment(move);
-    const Assembled at = expect_tangent_matches_forces(contribution, state, n);
-    // Action and reaction: the force on the plane balances the shell's.
-    assemble(contribution, state, 1, n);
-    dealii::Tensor<1, 3> on_shell;
-    for (unsigned int v = 0; v < surface.n_vertices(); ++v)
-      for (unsigned int c = 0; c < 3; ++c)
-        on_shell[c] += at.force[model.vertex_dofs(v)[c]];
-    const auto &load = contact.obstacle_loads()[0];
-    for (unsigned int c = 0; c < 3; ++c)
-      EXPECT_NEAR(load.force[c], -on_shell[c], 1e-12 * on_shell.norm());
+    expect_tangent_matches_forces(contribution, state, n);
+    const auto &load =
+        expect_action_and_reaction(contact, contribution, plate, n);
     EXPECT_GT(load.active_pairs, 0u);
   }
 } // namespace
@@ -223,8 +236,22 @@ namespace
 // differences, and the forces, internal to the shell, summing to zero.
 namespace
 {
+  /// The force on the upper plate of make_two_plates.
+  dealii::Tensor<1, 3> upper_plate_force(const mesh::Surface     &surface,
+                                         const model::ShellModel &model,
+                                         const Vector<double>    &force)
+  {
+    dealii::Tensor<1, 3> total;
+    for (unsigned int v = 0; v < surface.n_vertices(); ++v)
+      if (surface.get_vertices()[v][2] > 0.5)
+        for (unsigned int c = 0; c < 3; ++c)
+          total[c] += force[model.vertex_dofs(v)[c]];
+    return total;
+  }
+  dealii::Tensor<1, 3> last_upper_force;
+
   /// Returns the number of active self-contact pairs.
-  unsigned int check_self_contact(bool edge_edge)
+  unsigned int check_self_contact(bool edge_edge, double friction = 0)
   {
     mesh::Surface surface;
     make_two_plates(surface, dealii::Tensor<1, 3>({-0.3, 0.2, 1.05}));
@@ -234,11 +261,16 @@ namespace
     contact::ContactParameters parameters = barrier_parameters();
     parameters.self_contact               = true;
     parameters.edge_edge_pairs            = edge_edge;
+    parameters.self_friction_coefficient  = friction;
+    parameters.stiction_velocity          = 0.01;
     contact::Contact contact(model, parameters);
     contact.check_initial_configuration(state, 0);
     contact::ContactContribution contribution(contact);
     const unsigned int           n = model.n_dofs();
-    Vector<double>               move(n);
+    // A converged state at t = 0, whose pairs friction acts on (lagged).
+    assemble(contribution, state, 0, n);
+    contribution.save();
+    Vector<double> move(n);
     for (unsigned int v = 0; v < surface.n_vertices(); ++v)
       if (surface.get_vertices()[v][2] > 0.5)
       {
@@ -260,6 +292,7 @@ namespace
       }
     EXPECT_GT(largest, 0);
     EXPECT_LT(total.norm(), 1e-12 * largest);
+    last_upper_force = upper_plate_force(surface, model, at.force);
     return contact.self_active_pairs();
   }
 } // namespace
@@ -274,6 +307,25 @@ TEST(ContactAssembly, SelfContactTangentMatchesFiniteDifferencesAndBalances)
 TEST(ContactAssembly, SelfEdgeEdgeTangentMatchesFiniteDifferencesAndBalances)
 {
   EXPECT_GT(check_self_contact(true), check_self_contact(false));
+}
+
+// Friction of the shell against itself, vertex-triangle and edge-edge
+// pairs: the tangent, and the forces summing to zero as above; the upper
+// plate, moved by +x, is held back (-x) beyond the frictionless pairs'
+// lateral force, by at most mu times the lagged normal force (which is
+// not the present one: the plate has sunk since).
+TEST(ContactAssembly, SelfContactFrictionTangentMatchesFiniteDifferences)
+{
+  for (const bool edge_edge : {false, true})
+  {
+    SCOPED_TRACE(edge_edge ? "with edge-edge pairs" : "vertex-triangle");
+    check_self_contact(edge_edge, 0);
+    const dealii::Tensor<1, 3> frictionless = last_upper_force;
+    check_self_contact(edge_edge, 0.5);
+    const double friction_x = last_upper_force[0] - frictionless[0];
+    EXPECT_LT(friction_x, 0);
+    EXPECT_LE(-friction_x, 0.5 * frictionless[2]);
+  }
 }
 
 namespace
@@ -296,37 +348,55 @@ namespace
     return obstacle;
   }
 
+  dealii::Tensor<1, 3> last_knife_force;
+
   /// Plate [0, 2]^2 (h = 1, offset 0.5) under a knife 0.55 above it, with
   /// edge-edge pairs; the plate is then moved up (by 0.020 to 0.024) so
   /// that they are inside the barrier (distance 0.556-0.56 < 0.6) while
   /// every plate vertex stays out of reach of the knife's edge
   /// (sqrt(0.25^2 + 0.556^2) > 0.6 for the knife at x = 0.75), and the
   /// tangent is checked. Returns the number of active pairs on the knife.
-  unsigned int check_knife_tangent(double x0, double tilt, bool edge_edge)
+  unsigned int check_knife_tangent(double x0,
+                                   double tilt,
+                                   bool   edge_edge,
+                                   double friction = 0)
   {
     UnitPlate                  plate;
-    const auto                &surface    = plate.surface;
-    const auto                &model      = plate.model;
-    auto                      &state      = plate.state;
-    contact::ContactParameters parameters = barrier_parameters();
-    parameters.edge_edge_pairs            = edge_edge;
-    parameters.obstacles                  = {knife(x0, tilt, 0.58)};
+    const auto                &surface           = plate.surface;
+    const auto                &model             = plate.model;
+    auto                      &state             = plate.state;
+    contact::ContactParameters parameters        = barrier_parameters();
+    parameters.edge_edge_pairs                   = edge_edge;
+    parameters.obstacles                         = {knife(x0, tilt, 0.58)};
+    parameters.obstacles[0].friction_coefficient = friction;
+    parameters.stiction_velocity                 = 0.01;
     contact::Contact contact(model, parameters);
     contact.check_initial_configuration(state, 0);
     contact::ContactContribution contribution(contact);
     const unsigned int           n = model.n_dofs();
-    Vector<double>               move(n);
+    // A converged state at t = 0, whose pairs friction acts on (lagged).
+    assemble(contribution, state, 0, n);
+    contribution.save();
+    // Up, and with friction also along the knife's edge (+y), which
+    // leaves every distance to the edge as it is.
+    Vector<double> move(n);
     for (unsigned int v = 0; v < surface.n_vertices(); ++v)
     {
       const auto &dofs = model.vertex_dofs(v);
+      move[dofs[1]]    = friction > 0 ? 0.005 + 0.002 * (v % 2) : 0;
       move[dofs[2]]    = 0.02 + 0.002 * (v % 3);
     }
     state.apply_increment(move);
-    if (edge_edge)
-      expect_tangent_matches_forces(contribution, state, n);
-    else
+    if (!edge_edge)
+    {
       assemble(contribution, state, 1, n);
-    return contact.obstacle_loads()[0].active_pairs;
+      return contact.obstacle_loads()[0].active_pairs;
+    }
+    expect_tangent_matches_forces(contribution, state, n);
+    const auto &load =
+        expect_action_and_reaction(contact, contribution, plate, n);
+    last_knife_force = load.force;
+    return load.active_pairs;
   }
 } // namespace
 
@@ -341,6 +411,15 @@ TEST(ContactAssembly, EdgeEdgePairsHoldAKnifeBetweenVertices)
 {
   EXPECT_EQ(check_knife_tangent(0.75, 0, false), 0u);
   EXPECT_GT(check_knife_tangent(0.75, 0, true), 0u);
+}
+
+// Friction on edge-edge pairs: the plate slid along the knife's edge
+// drags the knife along (+y) by at most mu times the normal force.
+TEST(ContactAssembly, EdgeEdgeFrictionTangentMatchesFiniteDifferences)
+{
+  EXPECT_GT(check_knife_tangent(0.75, 0, true, 0.5), 0u);
+  EXPECT_GT(last_knife_force[1], 0);
+  EXPECT_LE(last_knife_force[1], 0.5 * last_knife_force[2]);
 }
 
 TEST(ContactAssembly, EdgeEdgeMollifierTangentMatchesFiniteDifferences)

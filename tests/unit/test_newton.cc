@@ -59,7 +59,7 @@ namespace
         if (K)
           for (unsigned int j = 0; j < x_.size(); ++j)
             K->set(i, j,
-                   (i == j ? 1 + 3 * c_ * x_[i] * x_[i] + coupling : 0) -
+                   (i == j ? spring_stiffness(x_[i]) + coupling : 0) -
                        (i == j ? 0 : coupling));
       }
       if (fixed_ >= 0)
@@ -109,6 +109,15 @@ namespace
       return true;
     }
 
+    bool use_convex_tangent() override
+    {
+      if (!offers_convex_tangent || convex_)
+        return false;
+      convex_ = true;
+      ++switches;
+      return true;
+    }
+
     const Vector<double> &x() const
     {
       return x_;
@@ -116,8 +125,18 @@ namespace
 
     double       coupling    = 0;
     unsigned int evaluations = 0;
+    /// The convex tangent floors the spring stiffness at 1 (a modified
+    /// Newton whose corrections always descend).
+    bool         offers_convex_tangent = false;
+    unsigned int switches              = 0;
 
   private:
+    double spring_stiffness(double x) const
+    {
+      const double exact = 1 + 3 * c_ * x * x;
+      return convex_ ? std::max(exact, 1.0) : exact;
+    }
+
     double sum() const
     {
       double s = 0;
@@ -132,7 +151,8 @@ namespace
     double              prescribed_;
     Vector<double>      x_, saved_;
     SparsityPattern     pattern_;
-    double              scale_ = 0;
+    double              scale_  = 0;
+    bool                convex_ = false;
   };
 
   LinearSolver &umfpack()
@@ -260,6 +280,38 @@ TEST(Newton, FailureMessageNamesAnIndefiniteTangent)
               std::string::npos)
         << message;
     EXPECT_NE(message.find("climbed the energy"), std::string::npos) << message;
+  }
+}
+
+TEST(Newton, SwitchesToTheConvexTangentWhenACorrectionClimbs)
+{
+  // Softening spring x - x^3 under 0.2: a stable equilibrium near 0.20 and
+  // an unstable one near 0.88 (tangent 1 - 3 x^2 < 0 past 1/sqrt(3)).
+  // From x = 0.75 the exact tangent is negative, so Newton climbs to the
+  // unstable one; offered a convex tangent, it switches once, at the
+  // first climbing correction, and descends to the stable one.
+  const double     unstable_limit = 1 / std::sqrt(3.0);
+  NewtonParameters parameters;
+  parameters.residual_tolerance = 1e-12;
+  parameters.energy_tolerance   = 0; // the convex tangent converges linearly
+  parameters.climbs_before_convex_tangent = 1;
+  Newton newton(parameters, umfpack());
+  for (const bool offered : {false, true})
+  {
+    SCOPED_TRACE(offered ? "convex tangent offered" : "exact tangent only");
+    CubicSprings problem({0.2}, -1.0);
+    problem.offers_convex_tangent = offered;
+    Vector<double> start(1);
+    start[0] = 0.75;
+    problem.apply_increment(start);
+    newton.solve(problem);
+    const double x = problem.x()[0];
+    EXPECT_NEAR(x - x * x * x, 0.2, 1e-10);
+    EXPECT_EQ(problem.switches, offered ? 1u : 0u);
+    if (offered)
+      EXPECT_LT(x, unstable_limit);
+    else
+      EXPECT_GT(x, unstable_limit);
   }
 }
 

@@ -45,16 +45,22 @@ namespace coshell::contact
     bool   project_tangent      = true;
     /// Project the Hessians while retrying a failed step.
     bool project_tangent_on_retry = false;
+    /// Project the Hessians for the rest of a step once a Newton
+    /// correction has climbed the energy.
+    bool project_tangent_on_stall = false;
     /// Keep only pairs whose distance is a local minimum over the surface.
     bool local_minima_only = false;
     /// Friction: tangential speed below which friction is smoothed (the
     /// creep speed of sticking), length / s.
     double stiction_velocity = 1e-3;
     /// Shell edges against obstacle edges (with IPC's mollifier for
-    /// nearly parallel edges), frictionless.
+    /// nearly parallel edges), with the obstacle's friction.
     bool edge_edge_pairs = false;
-    /// Shell against shell (vertex-triangle pairs), frictionless.
+    /// Shell against shell (vertex-triangle pairs, and edge-edge pairs
+    /// with edge_edge_pairs).
     bool self_contact = false;
+    /// Coulomb coefficient of the shell against itself (dimensionless).
+    double self_friction_coefficient = 0;
     /// Pairs of one connected piece closer than this multiple of their
     /// offset in the reference configuration are not self-contact pairs.
     double                self_exclusion = 2;
@@ -170,7 +176,11 @@ namespace coshell::contact
     /// obstacles (both gaps below a tenth of the activation distance), or
     /// else the smallest gap and its obstacle; "" without pairs.
     std::string squeeze_report() const;
-    double      barrier_stiffness() const;
+    /// With exact pair Hessians and Projected tangent on stall: project
+    /// them until the step is accepted or undone. True if that changed
+    /// the tangent.
+    bool   use_projected_tangent();
+    double barrier_stiffness() const;
     /// Wall-clock seconds so far: pair detection (and obstacle moves),
     /// pair forces and stiffness, collision filter of the corrections.
     struct Timing
@@ -214,7 +224,8 @@ namespace coshell::contact
     /// and Hessian.
     struct PairEnergy
     {
-      double        value = 0;
+      double        value     = 0;
+      double        mollifier = 1; ///< m: the normal force is w m |phi'|
       Coordinates12 gradient{};
       Matrix12      hessian{};
     };
@@ -273,8 +284,9 @@ namespace coshell::contact
     double         smallest_gap_ = 0, largest_penetration_ = 0;
     mutable Timing timing_;
     bool           pending_ = false;
-    /// Since a failed step (restore()) and until the next save().
-    bool                                       retrying_ = false;
+    /// Project the pair Hessians: after a failed attempt (restore(), on
+    /// retry) or a climbing correction (on stall), until the next save().
+    bool                                       projecting_this_step_ = false;
     std::vector<std::vector<dealii::Point<3>>> trial_current_;
     bool                                       trial_pending_ = false;
     /// What prepare() found at the last trial evaluation (line search).
@@ -395,8 +407,11 @@ namespace coshell::contact
     /// beyond its own: those of its connected piece that were nearer
     /// than the exclusion distance in the reference configuration.
     void exclude_reference_neighbours();
-    /// The positions the pair's other side takes its points from.
+    /// The positions the pair's other side takes its points from, now and
+    /// at the last converged state.
     const std::vector<dealii::Point<3>> &other_side(const Pair &pair) const;
+    const std::vector<dealii::Point<3>> &
+    saved_other_side(const Pair &pair) const;
     /// The shell vertex a pair's gap is charged to (diagnostics).
     unsigned int pair_shell_vertex(const Pair &pair) const;
     /// Per shell vertex, its smallest gap to each obstacle in the pairs of
@@ -439,22 +454,23 @@ namespace coshell::contact
                 const std::vector<dealii::Point<3>> &shell,
                 const std::vector<dealii::Point<3>> &obstacle) const;
     /// Friction of the pairs in contact at the last converged state.
-    void add_friction_terms(const model::BlockSink &sink, bool with_tangent);
-    void add_friction(const NormalForce &lagged,
-                      bool               with_tangent,
-                      model::DofBlock   &block);
-    void pair_dofs(const Pair &pair, model::DofBlock &block) const;
-    void pair_hessian(const PairEnergy           &energy,
-                      ShellCoordinates            shell,
-                      dealii::FullMatrix<double> &matrix) const;
-    void anticipate_obstacle(const Pair       &pair,
-                             const PairEnergy &energy,
-                             model::DofBlock  &block) const;
-    void record_pair(const Pair                            &pair,
-                     const std::array<dealii::Point<3>, 4> &points,
-                     const Coordinates12                   &gradient,
-                     double                                 gap,
-                     const model::DofBlock                 &block);
+    void   add_friction_terms(const model::BlockSink &sink, bool with_tangent);
+    double friction_coefficient(const Pair &pair) const;
+    void   add_friction(const NormalForce &lagged,
+                        bool               with_tangent,
+                        model::DofBlock   &block);
+    void   pair_dofs(const Pair &pair, model::DofBlock &block) const;
+    void   pair_hessian(const PairEnergy           &energy,
+                        ShellCoordinates            shell,
+                        dealii::FullMatrix<double> &matrix) const;
+    void   anticipate_obstacle(const Pair       &pair,
+                               const PairEnergy &energy,
+                               model::DofBlock  &block) const;
+    void   record_pair(const Pair                            &pair,
+                       const std::array<dealii::Point<3>, 4> &points,
+                       const Coordinates12                   &gradient,
+                       double                                 gap,
+                       const model::DofBlock                 &block);
     /// 'shell_tree': the shell triangles' boxes at x.
     void find_pairs(const std::vector<dealii::Point<3>> &x,
                     const Tree                          &shell_tree);
@@ -483,10 +499,19 @@ namespace coshell::contact
     void   set_target_time(double time);
   };
 
-  /// The closest point of a point-triangle pair on its triangle.
+  /// Weights w of a pair's four points such that sum_k w_k x_k is the
+  /// vector between its two closest points (from the second primitive's
+  /// to the first's), given their parameters (SquaredDistance::parameters):
+  /// {1, -(1 - b - c), -b, -c} for a point and a triangle, {1 - s, s,
+  /// -(1 - t), -t} for two segments.
+  std::array<double, 4>
+  closest_point_weights(bool                         edge_edge,
+                        const std::array<double, 2> &parameters);
+  /// sum_k w_k x_k: the vector between the closest points.
   dealii::Tensor<1, 3>
-  closest_point(const std::array<dealii::Point<3>, 4> &points,
-                const SquaredDistance                 &s);
+  closest_point_difference(bool                                   edge_edge,
+                           const std::array<dealii::Point<3>, 4> &points,
+                           const std::array<double, 2>           &parameters);
 
   /// The Contribution that adds a Contact to a ShellProblem.
   class ContactContribution : public model::Contribution
@@ -513,6 +538,7 @@ namespace coshell::contact
     void        begin_trial() override;
     void        end_trial() override;
     bool        symmetric_tangent() const override;
+    bool        use_convex_tangent() override;
     std::string failure_context() const override;
 
   private:

@@ -133,6 +133,13 @@ namespace coshell::model
     virtual void end_trial() {}
 
     virtual bool symmetric_tangent() const = 0;
+    /// See NonlinearProblem::use_convex_tangent(): switch to a positive
+    /// semi-definite tangent until the step is accepted or undone; true if
+    /// anything changed.
+    virtual bool use_convex_tangent()
+    {
+      return false;
+    }
     /// What a failed solve's message should add about this contribution
     /// (e.g. a shell pinched between obstacles); "" if nothing.
     virtual std::string failure_context() const

@@ -72,6 +72,7 @@ namespace coshell::model
     void        begin_trial() override;
     void        end_trial() override;
     bool        symmetric_tangent() const override;
+    bool        use_convex_tangent() override;
     std::string failure_context() const override;
 
     // solvers::EvolutionProblem

@@ -36,6 +36,9 @@ namespace coshell::solvers
     bool   line_search          = false;
     /// |r| / scale above this counts as divergence.
     double divergence_limit = 1e8;
+    /// Climbing corrections in an attempt before Newton asks the problem
+    /// for a convex tangent (NonlinearProblem::use_convex_tangent()).
+    unsigned int climbs_before_convex_tangent = 3;
 
     /// Declares the entries in the current subsection.
     static void declare_parameters(dealii::ParameterHandler &prm);

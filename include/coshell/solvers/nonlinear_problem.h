@@ -76,6 +76,17 @@ namespace coshell::solvers
     /// Whether the tangent is symmetric (lets a Cholesky solver be used).
     virtual bool symmetric_tangent() const = 0;
 
+    /// Called by Newton when a correction climbs the energy (du.r < 0: the
+    /// tangent is indefinite along it), once NewtonParameters::
+    /// climbs_before_convex_tangent corrections of the solve have. A problem
+    /// whose tangent is exact but may be indefinite (contact pair Hessians) can
+    /// switch to a positive semi-definite one for the rest of the step and
+    /// return true; Newton then discards the correction and evaluates again.
+    virtual bool use_convex_tangent()
+    {
+      return false;
+    }
+
     /// Where a failed solve left the problem, in words for the failure
     /// message (e.g. "; the shell is pinched between ..."); "" if there is
     /// nothing to add.
