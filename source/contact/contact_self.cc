@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 namespace coshell::contact
@@ -209,21 +210,35 @@ namespace coshell::contact
     // Pairs that may come within reach during the step: a margin of the
     // largest thickness. A pair that comes closer still keeps its exact
     // force; only its coupling to the other side drops out of the tangent.
-    const std::vector<Point<3>> x = shell_positions(state);
-    const Tree                  tree =
-        shell_triangle_tree(x, nullptr, max_reach() + largest_thickness_);
-    Hits hits;
-    for (const unsigned v : shell_vertices_)
+    // Two vertices that each moved at most a quarter of the margin since
+    // the list was made came at most half the margin closer.
+    std::vector<Point<3>> x = shell_positions(state);
+    double                largest_move2 =
+        coupling_positions_.empty() ? std::numeric_limits<double>::max() : 0;
+    for (unsigned int v = 0; v < coupling_positions_.size(); ++v)
+      largest_move2 = std::max(largest_move2,
+                               (x[v] - coupling_positions_[v]).norm_square());
+    if (largest_move2 > std::pow(largest_thickness_ / 4, 2))
     {
-      hits.clear();
-      tree.query(bgi::intersects(box_of({x[v]}, 0)), std::back_inserter(hits));
-      for (const auto &hit : hits)
-        if (self_pair_allowed(v, hit.second))
-          for (const unsigned w : shell_triangles_[hit.second])
-            pairs.push_back({v, w});
+      coupling_pairs_.clear();
+      const Tree tree =
+          shell_triangle_tree(x, nullptr, max_reach() + largest_thickness_);
+      Hits hits;
+      for (const unsigned v : shell_vertices_)
+      {
+        hits.clear();
+        tree.query(bgi::intersects(box_of({x[v]}, 0)),
+                   std::back_inserter(hits));
+        for (const auto &hit : hits)
+          if (self_pair_allowed(v, hit.second))
+            for (const unsigned w : shell_triangles_[hit.second])
+              coupling_pairs_.push_back({v, w});
+      }
+      if (parameters_.edge_edge_pairs)
+        add_self_edge_couplings(x, tree, coupling_pairs_);
+      coupling_positions_ = std::move(x);
     }
-    if (parameters_.edge_edge_pairs)
-      add_self_edge_couplings(x, tree, pairs);
+    pairs.insert(pairs.end(), coupling_pairs_.begin(), coupling_pairs_.end());
   }
 
   void Contact::add_self_edge_couplings(

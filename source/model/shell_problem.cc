@@ -72,6 +72,11 @@ namespace coshell::model
     const EvaluationPoint                    at = point();
     for (const auto &contribution : contributions_)
       contribution->coupled_vertices(at, couplings);
+    // Contact keeps its list while the shell moves little: the same list
+    // needs no sort.
+    if (couplings == gathered_couplings_)
+      return;
+    gathered_couplings_ = couplings;
     std::sort(couplings.begin(), couplings.end());
     couplings.erase(std::unique(couplings.begin(), couplings.end()),
                     couplings.end());

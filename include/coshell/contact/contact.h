@@ -141,6 +141,11 @@ namespace coshell::contact
     {
       return self_active_pairs_;
     }
+    /// Vertex pairs that self contact may couple during the next step:
+    /// those within reach plus a margin of the largest thickness. Found
+    /// anew only once some vertex has moved a quarter of that margin
+    /// since they were last found (before, the same list), so the
+    /// pattern keeps half its margin for the step.
     void self_couplings(const model::ShellState                  &state,
                         std::vector<std::array<unsigned int, 2>> &pairs) const;
 
@@ -244,8 +249,11 @@ namespace coshell::contact
     const model::ShellModel &model_;
     ContactParameters        parameters_;
     /// Cell thickness of each shell triangle, and the largest one.
-    std::vector<double>                  shell_triangle_thickness_;
-    double                               largest_thickness_ = 0;
+    std::vector<double> shell_triangle_thickness_;
+    double              largest_thickness_ = 0;
+    /// self_couplings(): where the shell was when they were found.
+    mutable std::vector<dealii::Point<3>>            coupling_positions_;
+    mutable std::vector<std::array<unsigned int, 2>> coupling_pairs_;
     double                               kappa_ = 0, activation_ = 0;
     std::vector<unsigned int>            shell_vertices_; ///< used
     std::vector<double>                  shell_vertex_area_;

@@ -129,8 +129,10 @@ namespace coshell::model
     std::vector<std::unique_ptr<Contribution>> contributions_;
     PrescribedIncrementFunction                prescribed_;
     dealii::SparsityPattern                    sparsity_;
-    /// The extra vertex couplings sparsity_ was built with.
+    /// The extra vertex couplings sparsity_ was built with, sorted, and
+    /// as the contributions gave them.
     std::vector<std::array<unsigned int, 2>> coupled_vertices_;
+    std::vector<std::array<unsigned int, 2>> gathered_couplings_;
     mutable dealii::FullMatrix<double>       trimmed_;
     bool                                     couples_beyond_cells_ = false;
     const dealii::FullMatrix<double>          &
