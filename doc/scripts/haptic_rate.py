@@ -1,0 +1,164 @@
+#!/usr/bin/python3
+"""Haptic-rate benchmark of the IOL injection (prm/iol/injection.prm, the
+default lens): steps per second of the push with the plunger engaging the
+folded lens, in the scene's own mode (backward Euler, full Newton, barrier
+contact) and in the linearized modes a training simulator's haptic loop
+would run (one linear solve per step: `linearized implicit euler`), with
+the barrier and with the penalty. The fold is run once, in the scene's
+mode, and written as a checkpoint; each mode restarts from it for --push
+seconds at a fixed step. Per mode: steps per second, the per-step split
+(assembly with contact, linear solver, the rest), contact detection per
+step, the smallest gap (negative: penetration) and the largest strains,
+which tell a stable run from one that blew up. Writes
+doc/performance/haptic_rate.csv and haptic_rate.png, stamped with machine
+and commit. One thread; the modes run one after another.
+
+  /usr/bin/python3 doc/scripts/haptic_rate.py --coshell build/coshell \\
+      [--push 0.2] [--step 0.001]
+"""
+import argparse
+import csv
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from doc_common import ROOT, finish_plot, machine_and_commit, write_csv  # noqa: E402
+
+import matplotlib  # noqa: E402
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+OUT = os.path.join(ROOT, "doc", "performance")
+SCENE = os.path.join(ROOT, "prm", "iol", "injection.prm")
+FOLD_END = 1.3  # s, stage 1 of the scene
+QUIET = ["Parallel/Threads=1", "Output/Write VTU=false",
+         "Stage 3/Analysis type=none"]
+MODES = [
+    ("backward Euler, Newton, barrier", "implicit euler", "barrier"),
+    ("linearized Euler, barrier", "linearized implicit euler", "barrier"),
+    ("linearized Euler, penalty", "linearized implicit euler", "penalty"),
+]
+
+
+def coshell(binary, output, assignments):
+    command = [binary, SCENE, "--output", output]
+    for assignment in QUIET + assignments:
+        command += ["--set", assignment]
+    return subprocess.run(command, stdout=subprocess.DEVNULL,
+                          stderr=subprocess.PIPE, text=True,
+                          env=dict(os.environ, OPENBLAS_NUM_THREADS="1"))
+
+
+def folded_checkpoint(binary, work):
+    """Runs the fold in the scene's own mode; returns its last checkpoint."""
+    output = os.path.join(work, "fold")
+    process = coshell(binary, output, [
+        "Stage 2/Analysis type=none",
+        f"Output/Checkpoint interval={FOLD_END}"])
+    if process.returncode != 0:
+        sys.exit("the fold failed: " + process.stderr.strip()[-400:])
+    return os.path.join(output, sorted(
+        f for f in os.listdir(output) if f.startswith("checkpoint-"))[-1])
+
+
+def largest_strains(output):
+    with open(os.path.join(output, "time_history.csv")) as f:
+        rows = list(csv.DictReader(f))
+    return [max(float(r[c]) for r in rows)
+            for c in ("max_bending_strain", "max_membrane_strain")]
+
+
+def measure(binary, checkpoint, mode, push, step, work):
+    label, method, contact = mode
+    output = os.path.join(work, label.replace(" ", "_").replace(",", ""))
+    command = [binary, SCENE, "--output", output, "--restart", checkpoint]
+    for assignment in QUIET + [
+            f"Stage 2/Duration={push}", f"Time integration/Method={method}",
+            f"Time integration/Time step={step}",
+            f"Time integration/Maximum time step={step}",
+            f"Contact/Method={contact}"]:
+        command += ["--set", assignment]
+    process = subprocess.run(command, stdout=subprocess.DEVNULL,
+                             stderr=subprocess.PIPE, text=True,
+                             env=dict(os.environ, OPENBLAS_NUM_THREADS="1"))
+    if process.returncode != 0:
+        return {"mode": label, "status": process.stderr.strip().splitlines()[-1]}
+    with open(os.path.join(output, "summary.json")) as f:
+        summary = json.load(f)
+    seconds = summary["time_stepping_s"]
+    # Steps of this run only: the restart continues the fold's numbering.
+    with open(os.path.join(output, "time_history.csv")) as f:
+        rows = [r for r in csv.DictReader(f) if float(r["time"]) > FOLD_END]
+    steps = len(rows)
+    bending, membrane = largest_strains(output)
+    return {
+        "mode": label, "steps": steps,
+        "newton_iterations": sum(int(float(r["iterations"]))
+                                 for r in rows),
+        "steps_per_second": round(steps / seconds["total"], 1),
+        "ms_per_step": round(1e3 * seconds["total"] / steps, 2),
+        "assembly_ms_per_step": round(1e3 * seconds["assembly"] / steps, 2),
+        "contact_detection_ms_per_step": round(
+            1e3 * summary["contact"]["detection_s"] / steps, 2),
+        "linear_solver_ms_per_step": round(
+            1e3 * seconds["linear_solver"] / steps, 2),
+        "other_ms_per_step": round(1e3 * seconds["other"] / steps, 2),
+        "smallest_gap_mm": summary["contact"]["smallest_gap"],
+        "max_bending_strain": round(bending, 4),
+        "max_membrane_strain": round(membrane, 4),
+        "status": "ok"}
+
+
+def plot(rows, commit):
+    rows = [r for r in rows if r["status"] == "ok"]
+    figure, axes = plt.subplots(figsize=(7.5, 4))
+    labels = [r["mode"].replace(", ", ",\n") for r in rows]
+    bottom = [0.0] * len(rows)
+    for part in ("assembly", "linear_solver", "other"):
+        values = [r[f"{part}_ms_per_step"] for r in rows]
+        axes.bar(labels, values, bottom=bottom, label=part.replace("_", " "))
+        bottom = [b + v for b, v in zip(bottom, values)]
+    axes.axhline(2.0, color="k", ls="--", lw=1, label="500 steps/s")
+    for x, r in enumerate(rows):
+        axes.text(x, bottom[x], f"{r['steps_per_second']:g} steps/s",
+                  ha="center", va="bottom", fontsize=8)
+    axes.set_yscale("log")
+    axes.tick_params(axis="x", labelsize=7)
+    finish_plot(figure, axes, "", "wall time per step (ms)",
+                f"IOL push, default lens, one thread ({commit})",
+                os.path.join(OUT, "haptic_rate.png"))
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__)
+    parser.add_argument("--coshell", required=True)
+    parser.add_argument("--push", type=float, default=0.2,
+                        help="seconds of push after the fold")
+    parser.add_argument("--step", type=float, default=0.001,
+                        help="fixed time step, s")
+    args = parser.parse_args()
+    binary = os.path.abspath(args.coshell)
+    machine, commit = machine_and_commit()
+    with tempfile.TemporaryDirectory() as work:
+        checkpoint = folded_checkpoint(binary, work)
+        rows = []
+        for mode in MODES:
+            rows.append(measure(binary, checkpoint, mode, args.push,
+                                args.step, work))
+            print(rows[-1], flush=True)
+    os.makedirs(OUT, exist_ok=True)
+    write_csv(os.path.join(OUT, "haptic_rate.csv"), rows,
+              [f"machine: {machine}; commit {commit}",
+               f"prm/iol/injection.prm, default lens: the fold (1.3 s, the "
+               f"scene's mode) as a checkpoint, then {args.push:g} s of push "
+               f"at dt = {args.step:g} s per mode, Parallel/Threads = 1, no "
+               "VTU"],
+              list(dict.fromkeys(k for r in rows for k in r)))
+    plot(rows, commit)
+
+
+if __name__ == "__main__":
+    main()
