@@ -126,6 +126,7 @@ def plot(rows, commit):
         axes.text(x, bottom[x], f"{r['steps_per_second']:g} steps/s",
                   ha="center", va="bottom", fontsize=8)
     axes.set_yscale("log")
+    axes.set_ylim(1, 10 * max(bottom))  # room for the legend above the bars
     axes.tick_params(axis="x", labelsize=7)
     finish_plot(figure, axes, "", "wall time per step (ms)",
                 f"IOL push, default lens, one thread ({commit})",
