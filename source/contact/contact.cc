@@ -88,6 +88,7 @@ namespace coshell::contact
     loads_.resize(n);
     obstacle_work_.assign(n, 0.0);
     potential_per_obstacle_.assign(n, 0.0);
+    friction_dissipation_per_obstacle_.assign(n, 0.0);
     saved_potential_per_obstacle_.assign(n, 0.0);
     shell_force_.assign(n, Vector<double>(model.n_dofs()));
     saved_shell_force_ = shell_force_;
@@ -452,7 +453,11 @@ namespace coshell::contact
   /// in is dE_o + f_o . du, the shell's part by the trapezoidal rule on
   /// the shell's translations (the rule of the scene's other works). Exact
   /// for any rigid motion, rotations included, and for an obstacle that
-  /// lags behind its prescribed position and catches up.
+  /// lags behind its prescribed position and catches up. Friction has no
+  /// energy, but its dissipation D over the step is its potential within
+  /// the step (lagged normal force, displacement from the step's start),
+  /// so it counts as E_o does: f_o . du + D is the work of the friction
+  /// force along the obstacle's own motion, 0 for a fixed obstacle.
   double Contact::step_work(unsigned int o) const
   {
     if (saved_positions_.size() != positions_.size())
@@ -468,7 +473,7 @@ namespace coshell::contact
                       (positions_[v][d] - saved_positions_[v][d]);
     }
     return potential_per_obstacle_[o] - saved_potential_per_obstacle_[o] +
-           shell_work;
+           friction_dissipation_per_obstacle_[o] + shell_work;
   }
 
   void Contact::add_shell_force(const Pair &pair, const model::DofBlock &block)

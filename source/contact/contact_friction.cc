@@ -18,6 +18,12 @@ namespace coshell::contact
 
   namespace
   {
+    /// f0(x) = int_0^x f1: the dissipation per unit mu lambda of a slip x.
+    double friction_work(double x, double eps)
+    {
+      return x < eps ? x * x / eps - x * x * x / (3 * eps * eps) : x - eps / 3;
+    }
+
     /// f1(x)/x and its derivative in x.
     std::pair<double, double> friction_ratio(double x, double eps)
     {
@@ -132,6 +138,10 @@ namespace coshell::contact
       relative += w[k] * (points[k] - before[k]);
     const Tensor<1, 3> u      = relative - (relative * normal) * normal;
     const auto [ratio, slope] = friction_ratio(u.norm(), eps);
+    const double dissipated = mu * lagged.force * friction_work(u.norm(), eps);
+    friction_dissipation_ += dissipated;
+    if (!pair.self)
+      friction_dissipation_per_obstacle_[pair.obstacle] += dissipated;
     // On the first primitive's closest point; point k takes w_k of it.
     const Tensor<1, 3> force = -mu * lagged.force * ratio * u;
 

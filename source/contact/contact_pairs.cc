@@ -404,6 +404,9 @@ namespace coshell::contact
     vertex_force_      = 0;
     std::fill(potential_per_obstacle_.begin(), potential_per_obstacle_.end(),
               0.0);
+    std::fill(friction_dissipation_per_obstacle_.begin(),
+              friction_dissipation_per_obstacle_.end(), 0.0);
+    friction_dissipation_ = 0;
     for (auto &force : shell_force_)
       force = 0;
     std::fill(vertex_gap_.begin(), vertex_gap_.end(),

@@ -634,6 +634,9 @@ namespace coshell::driver
           inertia->measures(state, &damping_force);
       out.dissipated_energy +=
           0.5 * ((damping_force * q) + (out.damping_force * q));
+      // Friction's dissipation over the step (0 without friction).
+      if (out.contact)
+        out.dissipated_energy += out.contact->step_friction_dissipation();
       out.damping_force = damping_force;
       add_contact_work(problem, q, out);
       const double strain_energy = internal->strain_energy(state);

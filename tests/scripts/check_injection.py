@@ -17,10 +17,9 @@ through --set) and checks what the scene must show:
   - the plunger force is finite and positive;
   - energy: the work the plunger, the wings and the rod did on the lens,
     plus the external work, equals the strain energy + kinetic energy +
-    the energy dissipated by drag and damping + the barrier energy stored
-    in contact within 2 % of that work (frictionless contact; with
-    friction the remainder is the friction's dissipation, reported, and
-    must not be negative beyond that tolerance).
+    the energy dissipated by drag, damping and friction + the barrier
+    energy stored in contact within 2 % of that work (a fixed obstacle,
+    such as the cartridge, does no work; its friction dissipates).
 
 With --fold-only WIDTH the run is the fold stage alone: the gaps, the
 energy and the optic's width at the end (<= WIDTH) are checked and the
@@ -68,9 +67,6 @@ def parse_arguments():
     parser.add_argument("--shape-tolerance", type=float, default=0.02,
                         help="largest optic deviation / optic diameter")
     parser.add_argument("--energy-tolerance", type=float, default=0.02)
-    parser.add_argument("--friction", action="store_true",
-                        help="the scene has friction: the energy remainder "
-                             "is its dissipation")
     parser.add_argument("--figures", help="directory for the PNG files")
     parser.add_argument("--fold-only", type=float, metavar="WIDTH",
                         help="the run is the fold stage alone: check the "
@@ -195,21 +191,15 @@ def check_energy(checks, history, forces, args):
     supplied = sum(works.values()) + energies["external_work"]
     print("energy (N mm): plunger work {:.5g}, other obstacles (wings, rod) "
           "{:.4g}, external {external_work:.3g}; strain {strain_energy:.5g}, "
-          "kinetic {kinetic_energy:.3g}, drag and damping "
+          "kinetic {kinetic_energy:.3g}, drag, damping and friction "
           "{dissipated_energy:.5g}, barrier {contact_energy:.3g}; remainder "
           "{remainder:.3g} ({:.3g} % of the work supplied)".format(
               plunger, sum(works.values()) - plunger,
               100 * remainder / supplied, **energies))
     tolerance = args.energy_tolerance * supplied
-    if args.friction:
-        print(f"friction dissipated {remainder:.4g} N mm "
-              f"({100 * remainder / supplied:.3g} % of the work supplied)")
-        checks("energy: the friction's share is not negative",
-               remainder >= -tolerance)
-    else:
-        checks(f"energy balance within {100 * args.energy_tolerance:g} % of "
-               "the work the plunger, wings and rod supplied",
-               abs(remainder) <= tolerance)
+    checks(f"energy balance within {100 * args.energy_tolerance:g} % of "
+           "the work the plunger, wings and rod supplied",
+           abs(remainder) <= tolerance)
 
 
 def plot(args, history, time, displacement, push, chord):

@@ -163,7 +163,13 @@ namespace coshell::contact
     /// The barrier (or penalty) energy of every pair at the last
     /// evaluation, N mm: the energy contact stores, which the balance of
     /// a scene's energies must count.
-    double                       potential() const;
+    double potential() const;
+    /// Friction's dissipation over the step since save() (energy), at the
+    /// last evaluation.
+    double step_friction_dissipation() const
+    {
+      return friction_dissipation_;
+    }
     const std::vector<Obstacle> &obstacles() const;
     /// Smallest gap (distance minus offsets) over every evaluation since
     /// the last save() (+inf if no pair was within reach), length.
@@ -282,8 +288,13 @@ namespace coshell::contact
     std::vector<double>           obstacle_work_; ///< up to save()
     /// Per obstacle, its pairs' energy and their force on the shell (DoF
     /// layout), at the last evaluation and at save().
-    std::vector<double>                 potential_per_obstacle_;
-    std::vector<double>                 saved_potential_per_obstacle_;
+    std::vector<double> potential_per_obstacle_;
+    std::vector<double> saved_potential_per_obstacle_;
+    /// The friction dissipated since save(), mu lambda f0(|u|) summed over
+    /// the lagged pairs, per obstacle and in all (self pairs included), at
+    /// the last evaluation.
+    std::vector<double>                 friction_dissipation_per_obstacle_;
+    double                              friction_dissipation_ = 0;
     std::vector<dealii::Vector<double>> shell_force_, saved_shell_force_;
     std::vector<dealii::Point<3>>       start_centroids_; ///< at time 0
     double                              potential_ = 0;
