@@ -38,6 +38,15 @@ def write_csv(path, rows, header_lines, fields=None):
     print("wrote", path)
 
 
+def largest_strains(output):
+    """The largest bending and membrane strains over a run's steps
+    (time_history.csv, Quantities of interest/Largest strains = true)."""
+    with open(os.path.join(output, "time_history.csv")) as f:
+        rows = list(csv.DictReader(f))
+    return [max(float(r[column]) for r in rows)
+            for column in ("max_bending_strain", "max_membrane_strain")]
+
+
 def finish_plot(figure, axes, xlabel, ylabel, title, path):
     axes.set_xlabel(xlabel)
     axes.set_ylabel(ylabel)

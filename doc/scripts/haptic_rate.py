@@ -25,7 +25,8 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from doc_common import ROOT, finish_plot, machine_and_commit, write_csv  # noqa: E402
+from doc_common import (ROOT, finish_plot, largest_strains,  # noqa: E402
+                        machine_and_commit, write_csv)
 
 import matplotlib  # noqa: E402
 matplotlib.use("Agg")
@@ -43,8 +44,10 @@ MODES = [
 ]
 
 
-def coshell(binary, output, assignments):
+def coshell(binary, output, assignments, restart=None):
     command = [binary, SCENE, "--output", output]
+    if restart:
+        command += ["--restart", restart]
     for assignment in QUIET + assignments:
         command += ["--set", assignment]
     return subprocess.run(command, stdout=subprocess.DEVNULL,
@@ -64,26 +67,14 @@ def folded_checkpoint(binary, work):
         f for f in os.listdir(output) if f.startswith("checkpoint-"))[-1])
 
 
-def largest_strains(output):
-    with open(os.path.join(output, "time_history.csv")) as f:
-        rows = list(csv.DictReader(f))
-    return [max(float(r[c]) for r in rows)
-            for c in ("max_bending_strain", "max_membrane_strain")]
-
-
 def measure(binary, checkpoint, mode, push, step, work):
     label, method, contact = mode
     output = os.path.join(work, label.replace(" ", "_").replace(",", ""))
-    command = [binary, SCENE, "--output", output, "--restart", checkpoint]
-    for assignment in QUIET + [
-            f"Stage 2/Duration={push}", f"Time integration/Method={method}",
-            f"Time integration/Time step={step}",
-            f"Time integration/Maximum time step={step}",
-            f"Contact/Method={contact}"]:
-        command += ["--set", assignment]
-    process = subprocess.run(command, stdout=subprocess.DEVNULL,
-                             stderr=subprocess.PIPE, text=True,
-                             env=dict(os.environ, OPENBLAS_NUM_THREADS="1"))
+    process = coshell(binary, output, [
+        f"Stage 2/Duration={push}", f"Time integration/Method={method}",
+        f"Time integration/Time step={step}",
+        f"Time integration/Maximum time step={step}",
+        f"Contact/Method={contact}"], restart=checkpoint)
     if process.returncode != 0:
         return {"mode": label, "status": process.stderr.strip().splitlines()[-1]}
     with open(os.path.join(output, "summary.json")) as f:

@@ -25,7 +25,8 @@ import tempfile
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from doc_common import ROOT, finish_plot, machine_and_commit, write_csv  # noqa: E402
+from doc_common import (ROOT, finish_plot, largest_strains,  # noqa: E402
+                        machine_and_commit, write_csv)
 
 import matplotlib  # noqa: E402
 matplotlib.use("Agg")
@@ -45,14 +46,6 @@ def plunger_forces(output):
         rows = [r for r in csv.DictReader(f) if r["obstacle"] == PLUNGER]
     # The shell's force on the plunger is -x while it pushes the lens +x.
     return [(float(r["time"]), -float(r["fx"])) for r in rows]
-
-
-def largest_strains(output):
-    """The largest bending and membrane strains over all steps."""
-    with open(os.path.join(output, "time_history.csv")) as f:
-        rows = list(csv.DictReader(f))
-    return [max(float(r[column]) for r in rows)
-            for column in ("max_bending_strain", "max_membrane_strain")]
 
 
 def run(sizes, coshell, push, timeout, work):
