@@ -20,16 +20,6 @@ namespace coshell::contact
   {
     constexpr double infinity = std::numeric_limits<double>::infinity();
 
-    /// Whether two boxes overlap (touching counts).
-    bool overlap(const BoundingBox<3> &a, const BoundingBox<3> &b)
-    {
-      for (unsigned int d = 0; d < 3; ++d)
-        if (a.upper_bound(d) < b.lower_bound(d) ||
-            b.upper_bound(d) < a.lower_bound(d))
-          return false;
-      return true;
-    }
-
     Point<3> centroid(const std::vector<Point<3>> &points)
     {
       Point<3> sum;
@@ -189,16 +179,28 @@ namespace coshell::contact
 
   void Contact::rebuild_tree(unsigned int obstacle)
   {
-    const auto                                      &x = current_[obstacle];
+    obstacle_trees_[obstacle] = obstacle_triangle_tree(obstacle, nullptr);
+  }
+
+  Contact::Tree
+  Contact::obstacle_triangle_tree(unsigned int                     o,
+                                  const std::vector<Tensor<1, 3>> *dX) const
+  {
+    const auto &X         = current_[o];
+    const auto &triangles = parameters_.obstacles[o].triangles;
     std::vector<std::pair<BoundingBox<3>, unsigned>> boxes;
-    const auto &triangles = parameters_.obstacles[obstacle].triangles;
     boxes.reserve(triangles.size());
+    const auto end = [&](unsigned int i)
+    { return dX ? X[i] + (*dX)[i] : X[i]; };
     for (unsigned int k = 0; k < triangles.size(); ++k)
+    {
+      const auto &t = triangles[k];
       boxes.emplace_back(
-          box_of({x[triangles[k][0]], x[triangles[k][1]], x[triangles[k][2]]},
+          box_of({X[t[0]], X[t[1]], X[t[2]], end(t[0]), end(t[1]), end(t[2])},
                  0),
           k);
-    obstacle_trees_[obstacle] = pack_rtree(boxes);
+    }
+    return pack_rtree(boxes);
   }
 
   const std::vector<ObstacleLoad> &Contact::obstacle_loads() const
@@ -283,83 +285,6 @@ namespace coshell::contact
     };
   } // namespace
 
-  /// Largest fraction of the motion (shell by dx, obstacle by dX; either
-  /// may be absent) that keeps every pair of this obstacle farther apart
-  /// than its offset: additive CCD on the candidates whose swept boxes
-  /// meet. 'shell_tree' holds the boxes of the shell triangles swept by
-  /// dx; the obstacle's vertices query it with its largest offset.
-  double Contact::ccd_fraction(const std::vector<Point<3>>     &x,
-                               const std::vector<Tensor<1, 3>> *dx,
-                               const Tree                      &shell_tree,
-                               unsigned int                     o,
-                               const std::vector<Tensor<1, 3>> *dX) const
-  {
-    const auto &X         = current_[o];
-    const auto &triangles = parameters_.obstacles[o].triangles;
-    const auto  along     = [](const std::vector<Tensor<1, 3>> *d, unsigned i)
-    { return d ? (*d)[i] : Tensor<1, 3>(); };
-    Tree swept_obstacle;
-    if (dX)
-    {
-      std::vector<std::pair<BoundingBox<3>, unsigned>> boxes;
-      for (unsigned int k = 0; k < triangles.size(); ++k)
-      {
-        const auto &t = triangles[k];
-        boxes.emplace_back(
-            box_of({X[t[0]], X[t[0]] + (*dX)[t[0]], X[t[1]],
-                    X[t[1]] + (*dX)[t[1]], X[t[2]], X[t[2]] + (*dX)[t[2]]},
-                   0),
-            k);
-      }
-      swept_obstacle = pack_rtree(boxes);
-    }
-    const Tree &obstacle_tree = dX ? swept_obstacle : obstacle_trees_[o];
-    double      fraction      = 1;
-    std::vector<std::pair<BoundingBox<3>, unsigned>> hits;
-    for (const unsigned v : shell_vertices_)
-    {
-      hits.clear();
-      obstacle_tree.query(bgi::intersects(box_of({x[v], x[v] + along(dx, v)},
-                                                 offset(o, true, v))),
-                          std::back_inserter(hits));
-      for (const auto &hit : hits)
-      {
-        const auto &t = triangles[hit.second];
-        fraction =
-            std::min(fraction, additive_ccd(PrimitivePair::point_triangle,
-                                            {x[v], X[t[0]], X[t[1]], X[t[2]]},
-                                            {along(dx, v), along(dX, t[0]),
-                                             along(dX, t[1]), along(dX, t[2])},
-                                            offset(o, true, v)));
-      }
-    }
-    // Only the obstacle's vertices near the (swept) shell can meet it.
-    const BoundingBox<3> shell_box = swept_shell_box(x, dx);
-    for (unsigned int j = 0; j < X.size(); ++j)
-    {
-      const BoundingBox<3> box =
-          box_of({X[j], X[j] + along(dX, j)}, largest_offset(o));
-      if (!overlap(box, shell_box))
-        continue;
-      hits.clear();
-      shell_tree.query(bgi::intersects(box), std::back_inserter(hits));
-      for (const auto &hit : hits)
-      {
-        const auto &t = shell_triangles_[hit.second];
-        fraction =
-            std::min(fraction, additive_ccd(PrimitivePair::point_triangle,
-                                            {X[j], x[t[0]], x[t[1]], x[t[2]]},
-                                            {along(dX, j), along(dx, t[0]),
-                                             along(dx, t[1]), along(dx, t[2])},
-                                            offset(o, false, hit.second)));
-      }
-    }
-    if (parameters_.edge_edge_pairs)
-      fraction =
-          std::min(fraction, edge_ccd_fraction(x, dx, obstacle_tree, o, dX));
-    return fraction;
-  }
-
   double Contact::admissible_fraction(const model::ShellState &state,
                                       const Vector<double>    &correction) const
   {
@@ -371,23 +296,13 @@ namespace coshell::contact
     for (const unsigned v : shell_vertices_)
       for (unsigned int c = 0; c < 3; ++c)
         dx[v][c] = correction[model_.vertex_dofs(v)[c]];
-    // One tree of the swept shell triangles for every obstacle and for
-    // self contact; the query boxes carry the offsets.
-    const Tree shell_tree = shell_triangle_tree(x, &dx, 0);
-    double     fraction =
-        parameters_.self_contact ? self_ccd_fraction(x, dx, shell_tree) : 1.0;
-    if (parameters_.self_contact && parameters_.edge_edge_pairs)
-      fraction = std::min(fraction, self_edge_ccd_fraction(x, dx, shell_tree));
-    for (unsigned int o = 0; o < current_.size(); ++o)
-      fraction =
-          std::min(fraction, ccd_fraction(x, &dx, shell_tree, o, nullptr));
-    return fraction;
+    return filter_fraction({x, &dx, invalid_obstacle, nullptr},
+                           invalid_obstacle);
   }
 
   /// Moves each obstacle towards its position at the evaluation time, as
   /// far as the step filter allows against the shell as it is.
-  void Contact::advance_obstacles(const std::vector<Point<3>> &x,
-                                  const Tree                  &shell_tree)
+  void Contact::advance_obstacles(const std::vector<Point<3>> &x)
   {
     pending_ = false;
     for (unsigned int o = 0; o < current_.size(); ++o)
@@ -398,7 +313,7 @@ namespace coshell::contact
       for (unsigned int i = 0; i < dX.size(); ++i)
         dX[i] = target_[o][i] - current_[o][i];
       const double fraction = parameters_.method == Method::barrier
-                                  ? ccd_fraction(x, nullptr, shell_tree, o, &dX)
+                                  ? filter_fraction({x, nullptr, o, &dX}, o)
                                   : 1.0;
       if (fraction >= 1)
         current_[o] = target_[o];
@@ -440,11 +355,13 @@ namespace coshell::contact
     positions_ = shell_positions(state);
     if (reuse_trial_detection())
       return;
-    // The shell does not move within prepare(): one tree serves the
-    // obstacles' step filter and the pair search.
-    const Tree shell_tree = shell_triangle_tree(positions_, nullptr, 0);
-    advance_obstacles(positions_, shell_tree);
-    find_pairs(positions_, shell_tree);
+    // Lists made where the shell is now serve the obstacles' step filter
+    // (an obstacle's step is small) and then the pair search.
+    std::vector<Screen> obstacle_screens;
+    Screen              self_screen;
+    update_candidates(positions_, obstacle_screens, self_screen);
+    advance_obstacles(positions_);
+    find_pairs(positions_);
   }
 
   /// The work obstacle o's motion did on the shell since the last save():
@@ -582,7 +499,7 @@ namespace coshell::contact
     positions_       = shell_positions(state);
     saved_positions_ = positions_;
     saved_time_      = time;
-    find_pairs(positions_, shell_triangle_tree(positions_, nullptr, 0));
+    find_pairs(positions_);
     for (const Pair &pair : pairs_)
     {
       const auto   p        = pair_points(pair, positions_, other_side(pair));

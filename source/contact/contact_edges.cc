@@ -230,39 +230,4 @@ namespace coshell::contact
                   offset(obstacle, true, shell_edges_[e][1]));
   }
 
-  /// Additive CCD of every shell edge against the edges of the obstacle
-  /// triangles its swept box meets ('obstacle_tree': those triangles'
-  /// boxes, swept by dX if the obstacle moves; the query boxes carry the
-  /// edge's offset).
-  double Contact::edge_ccd_fraction(const std::vector<Point<3>>     &x,
-                                    const std::vector<Tensor<1, 3>> *dx,
-                                    const Tree  &obstacle_tree,
-                                    unsigned int o,
-                                    const std::vector<Tensor<1, 3>> *dX) const
-  {
-    const auto &X     = current_[o];
-    const auto  along = [](const std::vector<Tensor<1, 3>> *d, unsigned i)
-    { return d ? (*d)[i] : Tensor<1, 3>(); };
-    double                    fraction = 1;
-    std::vector<unsigned int> edges;
-    EdgeMarks                 marks(obstacle_edges_[o].size());
-    for (unsigned int e = 0; e < shell_edges_.size(); ++e)
-    {
-      const auto [a, b] = shell_edges_[e];
-      edges_near(obstacle_tree, obstacle_triangle_edges_[o], marks,
-                 {x[a], x[b], x[a] + along(dx, a), x[b] + along(dx, b)},
-                 edge_offset(o, e), edges);
-      for (const unsigned f : edges)
-      {
-        const auto [c, d] = obstacle_edges_[o][f];
-        fraction =
-            std::min(fraction, additive_ccd(PrimitivePair::segment_segment,
-                                            {x[a], x[b], X[c], X[d]},
-                                            {along(dx, a), along(dx, b),
-                                             along(dX, c), along(dX, d)},
-                                            edge_offset(o, e)));
-      }
-    }
-    return fraction;
-  }
 } // namespace coshell::contact

@@ -37,8 +37,6 @@ namespace coshell::contact
       std::sort(ids.begin(), ids.end());
       return ids;
     }
-
-    using Hits = std::vector<std::pair<BoundingBox<3>, unsigned>>;
   } // namespace
 
   namespace
@@ -167,43 +165,43 @@ namespace coshell::contact
     std::vector<Pair>      found_;
   };
 
-  void Contact::find_pairs(const std::vector<Point<3>> &x,
-                           const Tree                  &shell_tree)
+  void Contact::find_pairs(const std::vector<Point<3>> &x)
   {
     pairs_.clear();
-    PairSelector   selector(*this);
-    BoundingBox<3> shell_box(x);
-    shell_box.extend(max_reach());
+    std::vector<Screen> screens;
+    Screen              self_screen;
+    update_candidates(x, screens, self_screen);
+    PairSelector selector(*this);
     for (unsigned int o = 0; o < current_.size(); ++o)
     {
-      find_shell_vertex_pairs(o, x, selector);
-      find_obstacle_vertex_pairs(o, x, shell_tree, shell_box, selector);
+      find_shell_vertex_pairs(o, x, screens[o], selector);
+      find_obstacle_vertex_pairs(o, x, screens[o], selector);
       if (parameters_.edge_edge_pairs)
-        find_edge_pairs(o, x, selector);
+        find_edge_pairs(o, x, screens[o], selector);
     }
     if (parameters_.self_contact)
-      find_self_pairs(x, shell_tree, selector);
+      find_self_pairs(x, self_screen, selector);
     if (parameters_.self_contact && parameters_.edge_edge_pairs)
-      find_self_edge_pairs(x, shell_tree, selector);
+      find_self_edge_pairs(x, self_screen, selector);
   }
 
   void Contact::find_shell_vertex_pairs(unsigned int                 o,
                                         const std::vector<Point<3>> &x,
+                                        const Screen                &screen,
                                         PairSelector                &selector)
   {
     const auto &X         = current_[o];
     const auto &triangles = parameters_.obstacles[o].triangles;
-    Hits        hits;
-    for (const unsigned v : shell_vertices_)
+    const auto &rows      = candidates_.vertex_triangle[o];
+    for (unsigned int k = 0; k < shell_vertices_.size(); ++k)
     {
-      hits.clear();
+      const unsigned v            = shell_vertices_[k];
       const double   vertex_reach = pair_reach(offset(o, true, v));
-      BoundingBox<3> box({x[v], x[v]});
-      box.extend(vertex_reach);
-      obstacle_trees_[o].query(bgi::intersects(box), std::back_inserter(hits));
-      for (const auto &hit : hits)
+      for (unsigned i = rows.start[k]; i < rows.start[k + 1]; ++i)
       {
-        const auto &t = triangles[hit.second];
+        if (screen.skips_search(rows.distance[i], vertex_reach))
+          continue;
+        const auto &t = triangles[rows.other[i]];
         const auto  d =
             point_triangle_distance(x[v], X[t[0]], X[t[1]], X[t[2]], false);
         if (std::sqrt(d.value) < vertex_reach)
@@ -211,38 +209,37 @@ namespace coshell::contact
                         feature_vertices(t, d.feature),
                         std::sqrt(d.value),
                         false},
-                       {true, o, v, hit.second, shell_vertex_area_[v]});
+                       {true, o, v, rows.other[i], shell_vertex_area_[v]});
       }
       selector.settle();
     }
   }
 
   void Contact::find_self_pairs(const std::vector<Point<3>> &x,
-                                const Tree                  &shell_tree,
+                                const Screen                &screen,
                                 PairSelector                &selector)
   {
     const double activation =
         parameters_.method == Method::barrier ? activation_ : 0.0;
-    Hits hits;
-    for (const unsigned v : shell_vertices_)
+    const auto &rows = candidates_.self_vertex_triangle;
+    for (unsigned int k = 0; k < shell_vertices_.size(); ++k)
     {
-      hits.clear();
-      shell_tree.query(
-          bgi::intersects(box_of({x[v]}, self_reach(v, activation))),
-          std::back_inserter(hits));
-      for (const auto &hit : hits)
+      const unsigned v = shell_vertices_[k];
+      for (unsigned i = rows.start[k]; i < rows.start[k + 1]; ++i)
       {
-        if (!self_pair_allowed(v, hit.second))
+        const unsigned triangle = rows.other[i];
+        const double   reach    = self_offset(v, triangle) + activation;
+        if (screen.skips_search(rows.distance[i], reach))
           continue;
-        const auto &t = shell_triangles_[hit.second];
+        const auto &t = shell_triangles_[triangle];
         const auto  d =
             point_triangle_distance(x[v], x[t[0]], x[t[1]], x[t[2]], false);
-        if (std::sqrt(d.value) < self_offset(v, hit.second) + activation)
+        if (std::sqrt(d.value) < reach)
           selector.add({{-1, -1, long(v)},
                         feature_vertices(t, d.feature),
                         std::sqrt(d.value),
                         false},
-                       {true, 0, v, hit.second, shell_vertex_area_[v], true});
+                       {true, 0, v, triangle, shell_vertex_area_[v], true});
       }
       selector.settle();
     }
@@ -250,23 +247,22 @@ namespace coshell::contact
 
   void Contact::find_obstacle_vertex_pairs(unsigned int                 o,
                                            const std::vector<Point<3>> &x,
-                                           const Tree           &shell_tree,
-                                           const BoundingBox<3> &shell_box,
-                                           PairSelector         &selector)
+                                           const Screen                &screen,
+                                           PairSelector &selector)
   {
-    const auto &X = current_[o];
-    Hits        hits;
+    const auto &X    = current_[o];
+    const auto &rows = candidates_.triangle_vertex[o];
     for (unsigned int j = 0; j < X.size(); ++j)
     {
-      if (!shell_box.point_inside(X[j]))
+      if (rows.start[j] == rows.start[j + 1])
         continue;
-      hits.clear();
-      shell_tree.query(bgi::intersects(box_of({X[j]}, reach(o))),
-                       std::back_inserter(hits));
-      for (const auto &hit : hits)
+      for (unsigned i = rows.start[j]; i < rows.start[j + 1]; ++i)
       {
-        const auto &t = shell_triangles_[hit.second];
-        const auto  d =
+        if (screen.skips_search(rows.distance[i], reach(o)))
+          continue;
+        const unsigned triangle = rows.other[i];
+        const auto    &t        = shell_triangles_[triangle];
+        const auto     d =
             point_triangle_distance(X[j], x[t[0]], x[t[1]], x[t[2]], false);
         // A shell vertex against an obstacle vertex is also the shell
         // vertex search's pair, with the vertex's thickness (the mean of
@@ -275,7 +271,7 @@ namespace coshell::contact
         // only witnesses for the local minima.
         const bool vertex_vertex =
             d.feature < 3 &&
-            offset(o, false, hit.second) <= offset(o, true, t[d.feature]);
+            offset(o, false, triangle) <= offset(o, true, t[d.feature]);
         if (std::sqrt(d.value) < reach(o))
           selector.add(
               {feature_vertices(t, d.feature),
@@ -283,7 +279,7 @@ namespace coshell::contact
                std::sqrt(d.value),
                true,
                !vertex_vertex},
-              {false, o, hit.second, j, shell_triangle_area_[hit.second] / 3});
+              {false, o, triangle, j, shell_triangle_area_[triangle] / 3});
       }
       selector.settle();
     }
@@ -556,19 +552,20 @@ namespace coshell::contact
 
   void Contact::find_edge_pairs(unsigned int                 o,
                                 const std::vector<Point<3>> &x,
+                                const Screen                &screen,
                                 PairSelector                &selector)
   {
-    const auto               &X = current_[o];
-    std::vector<unsigned int> edges;
-    EdgeMarks                 marks(obstacle_edges_[o].size());
+    const auto &X    = current_[o];
+    const auto &rows = candidates_.edge_edge[o];
     for (unsigned int e = 0; e < shell_edges_.size(); ++e)
     {
       const auto [a, b]       = shell_edges_[e];
       const double edge_reach = pair_reach(edge_offset(o, e));
-      edges_near(obstacle_trees_[o], obstacle_triangle_edges_[o], marks,
-                 {x[a], x[b]}, edge_reach, edges);
-      for (const unsigned f : edges)
+      for (unsigned i = rows.start[e]; i < rows.start[e + 1]; ++i)
       {
+        if (screen.skips_search(rows.distance[i], edge_reach))
+          continue;
+        const unsigned f  = rows.other[i];
         const auto [c, d] = obstacle_edges_[o][f];
         offer_edge_pair(selector, {true, o, e, f, shell_edge_area_[e]},
                         {x[a], x[b], X[c], X[d]}, {a, b, c, d}, edge_reach);
@@ -602,26 +599,24 @@ namespace coshell::contact
 
   /// Self contact of shell edges: each allowed pair (e, f), e < f, once.
   void Contact::find_self_edge_pairs(const std::vector<Point<3>> &x,
-                                     const Tree                  &shell_tree,
+                                     const Screen                &screen,
                                      PairSelector                &selector)
   {
     const double activation =
         parameters_.method == Method::barrier ? activation_ : 0.0;
-    std::vector<unsigned int> edges;
-    EdgeMarks                 marks(shell_edges_.size());
+    const auto &rows = candidates_.self_edge_edge;
     for (unsigned int e = 0; e < shell_edges_.size(); ++e)
     {
       const auto [a, b] = shell_edges_[e];
-      edges_near(shell_tree, shell_triangle_edges_, marks, {x[a], x[b]},
-                 self_edge_reach(e, activation), edges);
-      for (const unsigned f : edges)
+      for (unsigned i = rows.start[e]; i < rows.start[e + 1]; ++i)
       {
-        if (f <= e || !self_edge_pair_allowed(e, f))
+        const unsigned f     = rows.other[i];
+        const double   reach = self_edge_offset(e, f) + activation;
+        if (screen.skips_search(rows.distance[i], reach))
           continue;
         const auto [c, d] = shell_edges_[f];
         offer_edge_pair(selector, {true, 0, e, f, shell_edge_area_[e], true},
-                        {x[a], x[b], x[c], x[d]}, {a, b, c, d},
-                        self_edge_offset(e, f) + activation);
+                        {x[a], x[b], x[c], x[d]}, {a, b, c, d}, reach);
       }
       selector.settle();
     }

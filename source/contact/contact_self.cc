@@ -113,34 +113,6 @@ namespace coshell::contact
                                excluded_edges_[e].end(), f);
   }
 
-  double Contact::self_edge_ccd_fraction(const std::vector<Point<3>>     &x,
-                                         const std::vector<Tensor<1, 3>> &dx,
-                                         const Tree &swept_shell_tree) const
-  {
-    double                    fraction = 1;
-    std::vector<unsigned int> edges;
-    EdgeMarks                 marks(shell_edges_.size());
-    for (unsigned int e = 0; e < shell_edges_.size(); ++e)
-    {
-      const auto [a, b] = shell_edges_[e];
-      edges_near(swept_shell_tree, shell_triangle_edges_, marks,
-                 {x[a], x[b], x[a] + dx[a], x[b] + dx[b]},
-                 self_edge_reach(e, 0), edges);
-      for (const unsigned f : edges)
-      {
-        if (f <= e || !self_edge_pair_allowed(e, f))
-          continue;
-        const auto [c, d] = shell_edges_[f];
-        fraction =
-            std::min(fraction, additive_ccd(PrimitivePair::segment_segment,
-                                            {x[a], x[b], x[c], x[d]},
-                                            {dx[a], dx[b], dx[c], dx[d]},
-                                            self_edge_offset(e, f)));
-      }
-    }
-    return fraction;
-  }
-
   double Contact::self_reach(unsigned int v, double activation) const
   {
     return 0.5 * (model_.vertex_thickness(v) + largest_thickness_) + activation;
@@ -174,33 +146,6 @@ namespace coshell::contact
     return pair.self ? saved_positions_ : saved_[pair.obstacle];
   }
 
-  double Contact::self_ccd_fraction(const std::vector<Point<3>>     &x,
-                                    const std::vector<Tensor<1, 3>> &dx,
-                                    const Tree &swept_shell_tree) const
-  {
-    double fraction = 1;
-    Hits   hits;
-    for (const unsigned v : shell_vertices_)
-    {
-      hits.clear();
-      swept_shell_tree.query(
-          bgi::intersects(box_of({x[v], x[v] + dx[v]}, self_reach(v, 0))),
-          std::back_inserter(hits));
-      for (const auto &hit : hits)
-      {
-        if (!self_pair_allowed(v, hit.second))
-          continue;
-        const auto &t = shell_triangles_[hit.second];
-        fraction      = std::min(fraction,
-                                 additive_ccd(PrimitivePair::point_triangle,
-                                              {x[v], x[t[0]], x[t[1]], x[t[2]]},
-                                              {dx[v], dx[t[0]], dx[t[1]], dx[t[2]]},
-                                              self_offset(v, hit.second)));
-      }
-    }
-    return fraction;
-  }
-
   void
   Contact::self_couplings(const model::ShellState                  &state,
                           std::vector<std::array<unsigned int, 2>> &pairs) const
@@ -208,10 +153,12 @@ namespace coshell::contact
     if (!parameters_.self_contact)
       return;
     // Pairs that may come within reach during the step: a margin of the
-    // largest thickness. A pair that comes closer still keeps its exact
-    // force; only its coupling to the other side drops out of the tangent.
-    // Two vertices that each moved at most a quarter of the margin since
-    // the list was made came at most half the margin closer.
+    // largest thickness (the candidate lists' own margin is too narrow
+    // for the steps of a quasi-static roll-up). A pair that comes closer
+    // still keeps its exact force; only its coupling to the other side
+    // drops out of the tangent. Two vertices that each moved at most a
+    // quarter of the margin since the list was made came at most half
+    // the margin closer.
     std::vector<Point<3>> x = shell_positions(state);
     double                largest_move2 =
         coupling_positions_.empty() ? std::numeric_limits<double>::max() : 0;
@@ -220,43 +167,40 @@ namespace coshell::contact
                                (x[v] - coupling_positions_[v]).norm_square());
     if (largest_move2 > std::pow(largest_thickness_ / 4, 2))
     {
+      // By distance, not by box: the boxes' corners and the triangles'
+      // boxes took in far more pairs than the margin asks for.
+      Candidates   c;
+      const Motion still{x, nullptr, invalid_obstacle, nullptr};
+      c.margin = largest_thickness_;
+      make_self_candidates(still, shell_triangle_tree(x, nullptr, 0), c.margin,
+                           true, c);
       coupling_pairs_.clear();
-      const Tree tree =
-          shell_triangle_tree(x, nullptr, max_reach() + largest_thickness_);
-      Hits hits;
-      for (const unsigned v : shell_vertices_)
-      {
-        hits.clear();
-        tree.query(bgi::intersects(box_of({x[v]}, 0)),
-                   std::back_inserter(hits));
-        for (const auto &hit : hits)
-          if (self_pair_allowed(v, hit.second))
-            for (const unsigned w : shell_triangles_[hit.second])
+      const double activation =
+          parameters_.method == Method::barrier ? activation_ : 0.0;
+      const auto &vertex_triangle = c.self_vertex_triangle;
+      for (unsigned int k = 0; k < shell_vertices_.size(); ++k)
+        for (unsigned i = vertex_triangle.start[k];
+             i < vertex_triangle.start[k + 1]; ++i)
+        {
+          const unsigned v = shell_vertices_[k], t = vertex_triangle.other[i];
+          if (vertex_triangle.distance[i] <
+              self_offset(v, t) + activation + c.margin)
+            for (const unsigned w : shell_triangles_[t])
               coupling_pairs_.push_back({v, w});
-      }
-      if (parameters_.edge_edge_pairs)
-        add_self_edge_couplings(x, tree, coupling_pairs_);
+        }
+      const auto &edge_edge = c.self_edge_edge;
+      for (unsigned int e = 0; e + 1 < edge_edge.start.size(); ++e)
+        for (unsigned i = edge_edge.start[e]; i < edge_edge.start[e + 1]; ++i)
+        {
+          const unsigned f = edge_edge.other[i];
+          if (edge_edge.distance[i] <
+              self_edge_offset(e, f) + activation + c.margin)
+            for (const unsigned v : shell_edges_[e])
+              for (const unsigned w : shell_edges_[f])
+                coupling_pairs_.push_back({v, w});
+        }
       coupling_positions_ = std::move(x);
     }
     pairs.insert(pairs.end(), coupling_pairs_.begin(), coupling_pairs_.end());
-  }
-
-  void Contact::add_self_edge_couplings(
-      const std::vector<Point<3>>              &x,
-      const Tree                               &tree,
-      std::vector<std::array<unsigned int, 2>> &pairs) const
-  {
-    std::vector<unsigned int> edges;
-    EdgeMarks                 marks(shell_edges_.size());
-    for (unsigned int e = 0; e < shell_edges_.size(); ++e)
-    {
-      edges_near(tree, shell_triangle_edges_, marks,
-                 {x[shell_edges_[e][0]], x[shell_edges_[e][1]]}, 0, edges);
-      for (const unsigned f : edges)
-        if (f > e && self_edge_pair_allowed(e, f))
-          for (const unsigned v : shell_edges_[e])
-            for (const unsigned w : shell_edges_[f])
-              pairs.push_back({v, w});
-    }
   }
 } // namespace coshell::contact

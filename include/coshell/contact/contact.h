@@ -1,6 +1,7 @@
 #pragma once
 
 #include <coshell/contact/barrier.h>
+#include <coshell/contact/ccd.h>
 #include <coshell/contact/distances.h>
 #include <coshell/contact/obstacle.h>
 #include <coshell/model/contribution.h>
@@ -129,9 +130,6 @@ namespace coshell::contact
     /// that is then undone, which could leave them inside the shell).
     void begin_trial();
     void end_trial();
-    /// Self contact: the shell vertex pairs whose unknowns the tangent
-    /// will couple in the coming step (pairs within reach plus a margin
-    /// of the largest thickness), each as (vertex, vertex).
     bool self_contact() const
     {
       return parameters_.self_contact;
@@ -348,10 +346,106 @@ namespace coshell::contact
                          const std::array<Point<3>, 4> &p,
                          const std::array<unsigned, 4> &ids,
                          double                         reach) const;
+    /// Candidate pairs, in rows: per query primitive (a shell vertex, an
+    /// obstacle vertex or a shell edge), the primitives of the other side
+    /// ('other') whose boxes came within its reach plus the lists' margin,
+    /// and their distance then ('distance'; -inf in lists made for one
+    /// swept motion, which carry none).
+    struct CandidateRows
+    {
+      std::vector<unsigned int> start{0}, other;
+      std::vector<double>       distance;
+      void                      clear();
+      void                      add(unsigned int primitive, double listed);
+      void                      end_row()
+      {
+        start.push_back(other.size());
+      }
+    };
+    /// The rows of every kind of pair: per obstacle, shell vertices (in
+    /// the order of shell_vertices_) against its triangles, its vertices
+    /// against shell triangles and shell edges against its edges; shell
+    /// vertices against shell triangles and shell edges e against shell
+    /// edges f > e. With the positions they were made at and their
+    /// margin (length; < 0: none made yet). See contact_candidates.cc.
+    struct Candidates
+    {
+      std::vector<dealii::Point<3>>              shell;
+      std::vector<std::vector<dealii::Point<3>>> obstacles;
+      double                                     margin = -1;
+      std::vector<CandidateRows> vertex_triangle, triangle_vertex, edge_edge;
+      CandidateRows              self_vertex_triangle, self_edge_edge;
+    };
+    /// What a listed pair's distance tells without computing it: the
+    /// pair is now at most 'shift' nearer than when listed.
+    struct Screen
+    {
+      double shift = 0;
+      /// True if the pair is out of 'reach' (no pair of the search).
+      bool skips_search(double listed, double reach) const;
+      /// True if additive_ccd() would let the whole motion of the pair's
+      /// points ('moves') pass.
+      bool skips_filter(double               listed,
+                        double               offset,
+                        const Displacements &moves) const;
+    };
+    /// The shell moving from x by dx and obstacle 'moving' by dX (null,
+    /// and invalid_obstacle: that side keeps still).
+    struct Motion
+    {
+      const std::vector<dealii::Point<3>>     &x;
+      const std::vector<dealii::Tensor<1, 3>> *dx;
+      unsigned int                             moving;
+      const std::vector<dealii::Tensor<1, 3>> *dX;
+    };
+    static constexpr unsigned int invalid_obstacle = -1;
+    /// Made anew in const functions too (self_couplings()): a cache.
+    mutable Candidates candidates_;
+    /// How far beyond its reach a pair is listed: the shell may move half
+    /// of it before the lists are made anew (length).
+    double candidate_margin() const;
+    bool   covers(const Motion        &motion,
+                  std::vector<Screen> &obstacle_screens,
+                  Screen              &self_screen) const;
+    void   update_candidates(const std::vector<dealii::Point<3>> &x,
+                             std::vector<Screen> &obstacle_screens,
+                             Screen              &self_screen) const;
+    void   make_obstacle_candidates(unsigned int  o,
+                                    const Motion &motion,
+                                    const Tree   &shell_tree,
+                                    double        margin,
+                                    bool          measure,
+                                    Candidates   &c) const;
+    void   make_edge_candidates(unsigned int  o,
+                                const Motion &motion,
+                                const Tree   &obstacle_tree,
+                                double        margin,
+                                bool          measure,
+                                Candidates   &c) const;
+    void   make_self_candidates(const Motion &motion,
+                                const Tree   &shell_tree,
+                                double        margin,
+                                bool          measure,
+                                Candidates   &c) const;
+    /// The step filter: the largest fraction of the motion that keeps
+    /// every pair (of obstacle 'only', or of all and self contact) apart.
+    double filter_fraction(const Motion &motion, unsigned int only) const;
+    double obstacle_filter_fraction(const Motion     &motion,
+                                    unsigned int      o,
+                                    const Candidates &c,
+                                    const Screen     &screen) const;
+    double self_filter_fraction(const Motion     &motion,
+                                const Candidates &c,
+                                const Screen     &screen) const;
+    /// Boxes of obstacle o's triangles, swept by dX if given.
+    Tree
+    obstacle_triangle_tree(unsigned int                             o,
+                           const std::vector<dealii::Tensor<1, 3>> *dX) const;
     /// Shell edges against the edges of obstacle o's triangles within
     /// reach (one pair per two edges).
     void find_edge_pairs(unsigned int                         o,
                          const std::vector<dealii::Point<3>> &x,
+                         const Screen                        &screen,
                          PairSelector                        &selector);
     /// Which edges a query of edges_near() has found already: the
     /// number of the query that last found each edge.
@@ -381,22 +475,8 @@ namespace coshell::contact
     void exclude_reference_edge_neighbours(
         const std::vector<unsigned int> &piece_of_vertex);
     void find_self_edge_pairs(const std::vector<dealii::Point<3>> &x,
-                              const Tree                          &shell_tree,
+                              const Screen                        &screen,
                               PairSelector                        &selector);
-    void add_self_edge_couplings(
-        const std::vector<dealii::Point<3>>      &x,
-        const Tree                               &tree,
-        std::vector<std::array<unsigned int, 2>> &pairs) const;
-    double self_edge_ccd_fraction(const std::vector<dealii::Point<3>>     &x,
-                                  const std::vector<dealii::Tensor<1, 3>> &dx,
-                                  const Tree &swept_shell_tree) const;
-    /// Largest fraction of the motion that keeps every shell edge apart
-    /// from the edges of the obstacle triangles in 'obstacle_tree'.
-    double edge_ccd_fraction(const std::vector<dealii::Point<3>>     &x,
-                             const std::vector<dealii::Tensor<1, 3>> *dx,
-                             const Tree  &obstacle_tree,
-                             unsigned int o,
-                             const std::vector<dealii::Tensor<1, 3>> *dX) const;
     /// weight * m * phi and its derivatives for a pair at 'points' (the
     /// Hessian only 'with_hessian': a residual needs the gradient alone).
     PairEnergy pair_energy(const Pair                    &pair,
@@ -490,32 +570,22 @@ namespace coshell::contact
                        const Coordinates12                   &gradient,
                        double                                 gap,
                        const model::DofBlock                 &block);
-    /// 'shell_tree': the shell triangles' boxes at x.
-    void find_pairs(const std::vector<dealii::Point<3>> &x,
-                    const Tree                          &shell_tree);
+    /// The pairs within reach at x, from the candidate lists (made anew
+    /// if they no longer cover x).
+    void find_pairs(const std::vector<dealii::Point<3>> &x);
     void find_shell_vertex_pairs(unsigned int                         obstacle,
                                  const std::vector<dealii::Point<3>> &x,
+                                 const Screen                        &screen,
                                  PairSelector                        &selector);
     void find_self_pairs(const std::vector<dealii::Point<3>> &x,
-                         const Tree                          &shell_tree,
+                         const Screen                        &screen,
                          PairSelector                        &selector);
-    /// Largest fraction of dx that keeps every self pair apart.
-    double self_ccd_fraction(const std::vector<dealii::Point<3>>     &x,
-                             const std::vector<dealii::Tensor<1, 3>> &dx,
-                             const Tree &swept_shell_tree) const;
-    void   find_obstacle_vertex_pairs(unsigned int obstacle,
-                                      const std::vector<dealii::Point<3>> &x,
-                                      const Tree                   &shell_tree,
-                                      const dealii::BoundingBox<3> &shell_box,
-                                      PairSelector                 &selector);
-    double ccd_fraction(const std::vector<dealii::Point<3>>     &x,
-                        const std::vector<dealii::Tensor<1, 3>> *dx,
-                        const Tree                              &shell_tree,
-                        unsigned int                             obstacle,
-                        const std::vector<dealii::Tensor<1, 3>> *dX) const;
-    void   advance_obstacles(const std::vector<dealii::Point<3>> &x,
-                             const Tree                          &shell_tree);
-    void   set_target_time(double time);
+    void find_obstacle_vertex_pairs(unsigned int obstacle,
+                                    const std::vector<dealii::Point<3>> &x,
+                                    const Screen                        &screen,
+                                    PairSelector &selector);
+    void advance_obstacles(const std::vector<dealii::Point<3>> &x);
+    void set_target_time(double time);
   };
 
   /// Weights w of a pair's four points such that sum_k w_k x_k is the

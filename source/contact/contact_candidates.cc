@@ -1,0 +1,480 @@
+// The broad phase of contact: lists of candidate pairs that the pair search
+// and the step filter share, kept while the shell and the obstacles move
+// less than a margin, and screened by the distance each pair had when
+// listed. Between two rebuilds no R-tree is queried and no pair far from
+// contact has its distance or its CCD evaluated.
+//
+// Why the lists may be kept: a pair listed at positions x0 had a distance
+// d0; after each side's points moved at most s and b from x0, the
+// distance of the pair is at least d0 - s - b (the distance of a point to
+// a triangle, or of two segments, is 1-Lipschitz in each point). A pair
+// not listed had d0 >= reach + margin, so it stays out of reach while
+// s + b <= margin, also along a straight motion whose two ends are within
+// s and b of x0 (the distance of a point to x0 is convex along it).
+
+#include <coshell/contact/ccd.h>
+#include <coshell/contact/contact.h>
+#include <coshell/contact/distances.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace coshell::contact
+{
+  using namespace dealii;
+  namespace bgi = boost::geometry::index;
+
+  namespace
+  {
+    using Hits = std::vector<std::pair<BoundingBox<3>, unsigned>>;
+
+    constexpr double unknown = -std::numeric_limits<double>::infinity();
+
+    /// A pair's distance for its list, if 'measure'.
+    double listed(bool measure, PrimitivePair type, const Points4 &points)
+    {
+      return measure ? primitive_distance(type, points) : unknown;
+    }
+
+    /// Whether two boxes overlap (touching counts).
+    bool overlap(const BoundingBox<3> &a, const BoundingBox<3> &b)
+    {
+      for (unsigned int d = 0; d < 3; ++d)
+        if (a.upper_bound(d) < b.lower_bound(d) ||
+            b.upper_bound(d) < a.lower_bound(d))
+          return false;
+      return true;
+    }
+
+    Tensor<1, 3> along(const std::vector<Tensor<1, 3>> *d, unsigned int i)
+    {
+      return d ? (*d)[i] : Tensor<1, 3>();
+    }
+
+    /// The largest distance of the points (moved by d, if given) from
+    /// 'listed', at the start and at the end of the motion.
+    double largest_drift(const std::vector<unsigned int> *used,
+                         const std::vector<Point<3>>     &x,
+                         const std::vector<Tensor<1, 3>> *d,
+                         const std::vector<Point<3>>     &listed)
+    {
+      double     largest = 0;
+      const auto visit   = [&](unsigned int i)
+      {
+        largest = std::max(largest, (x[i] - listed[i]).norm_square());
+        if (d)
+          largest =
+              std::max(largest, (x[i] + (*d)[i] - listed[i]).norm_square());
+      };
+      if (used)
+        for (const unsigned int i : *used)
+          visit(i);
+      else
+        for (unsigned int i = 0; i < x.size(); ++i)
+          visit(i);
+      return std::sqrt(largest);
+    }
+
+  } // namespace
+
+  void Contact::CandidateRows::clear()
+  {
+    start.assign(1, 0);
+    other.clear();
+    distance.clear();
+  }
+
+  void Contact::CandidateRows::add(unsigned int primitive, double listed)
+  {
+    other.push_back(primitive);
+    distance.push_back(listed);
+  }
+
+  bool Contact::Screen::skips_search(double listed, double reach) const
+  {
+    return listed - shift >= reach;
+  }
+
+  bool Contact::Screen::skips_filter(double               listed,
+                                     double               offset,
+                                     const Displacements &moves) const
+  {
+    // additive_ccd() returns 1 at once when the gap exceeds its rate
+    // bound over (1 - kept fraction) = 0.9; 0.8 leaves room for
+    // round-off. That bound, |dx_0 - m| + max |dx_i - m| with m the mean
+    // move, is at most 4 max |dx_k|.
+    const double gap = listed - shift - offset;
+    if (!(gap > 0))
+      return false;
+    double largest = 0;
+    for (const auto &move : moves)
+      largest = std::max(largest, move.norm_square());
+    return 0.8 * gap > 4 * std::sqrt(largest);
+  }
+
+  double Contact::candidate_margin() const
+  {
+    // A quarter of the thickness: measured on the IOL push (linearized
+    // steps of 1 ms), the filter and the search took least with it among
+    // 0.1, 0.25, 0.5 and 1 (wider lists cost more to screen than their
+    // rebuilds save).
+    return 0.25 * largest_thickness_;
+  }
+
+  /// Whether candidates_ covers the motion, and if so the screens of its
+  /// pairs: per obstacle, and for self contact.
+  bool Contact::covers(const Motion        &motion,
+                       std::vector<Screen> &obstacle_screens,
+                       Screen              &self_screen) const
+  {
+    const Candidates &c = candidates_;
+    if (c.margin < 0)
+      return false;
+    const double shell_now =
+        largest_drift(&shell_vertices_, motion.x, nullptr, c.shell);
+    const double shell_swept =
+        largest_drift(&shell_vertices_, motion.x, motion.dx, c.shell);
+    if (parameters_.self_contact && 2 * shell_swept > c.margin)
+      return false;
+    self_screen = {2 * shell_now};
+    obstacle_screens.resize(current_.size());
+    for (unsigned int o = 0; o < current_.size(); ++o)
+    {
+      const auto  *dX = o == motion.moving ? motion.dX : nullptr;
+      const double now =
+          largest_drift(nullptr, current_[o], nullptr, c.obstacles[o]);
+      const double swept =
+          dX ? largest_drift(nullptr, current_[o], dX, c.obstacles[o]) : now;
+      if (shell_swept + swept > c.margin)
+        return false;
+      obstacle_screens[o] = {shell_now + now};
+    }
+    return true;
+  }
+
+  /// The lists of obstacle o for the motion, as far as 'margin' beyond
+  /// each pair's reach; with their distances at the motion's start if
+  /// 'measure'. 'shell_tree': the shell triangles' boxes, swept by dx.
+  void Contact::make_obstacle_candidates(unsigned int  o,
+                                         const Motion &motion,
+                                         const Tree   &shell_tree,
+                                         double        margin,
+                                         bool          measure,
+                                         Candidates   &c) const
+  {
+    const auto &x         = motion.x;
+    const auto *dx        = motion.dx;
+    const auto *dX        = o == motion.moving ? motion.dX : nullptr;
+    const auto &X         = current_[o];
+    const auto &triangles = parameters_.obstacles[o].triangles;
+    Tree        swept_obstacle;
+    if (dX)
+      swept_obstacle = obstacle_triangle_tree(o, dX);
+    const Tree &obstacle_tree = dX ? swept_obstacle : obstacle_trees_[o];
+    Hits        hits;
+    auto       &vertex_triangle = c.vertex_triangle[o];
+    vertex_triangle.clear();
+    for (const unsigned v : shell_vertices_)
+    {
+      hits.clear();
+      obstacle_tree.query(
+          bgi::intersects(box_of({x[v], x[v] + along(dx, v)},
+                                 pair_reach(offset(o, true, v)) + margin)),
+          std::back_inserter(hits));
+      for (const auto &hit : hits)
+      {
+        const auto &t = triangles[hit.second];
+        vertex_triangle.add(hit.second,
+                            listed(measure, PrimitivePair::point_triangle,
+                                   {{x[v], X[t[0]], X[t[1]], X[t[2]]}}));
+      }
+      vertex_triangle.end_row();
+    }
+    // Only the obstacle's vertices near the (swept) shell can meet it.
+    BoundingBox<3> shell_box = swept_shell_box(x, dx);
+    shell_box.extend(margin);
+    auto &triangle_vertex = c.triangle_vertex[o];
+    triangle_vertex.clear();
+    for (unsigned int j = 0; j < X.size(); ++j)
+    {
+      const BoundingBox<3> box =
+          box_of({X[j], X[j] + along(dX, j)}, reach(o) + margin);
+      hits.clear();
+      if (overlap(box, shell_box))
+        shell_tree.query(bgi::intersects(box), std::back_inserter(hits));
+      for (const auto &hit : hits)
+      {
+        const auto &t = shell_triangles_[hit.second];
+        triangle_vertex.add(hit.second,
+                            listed(measure, PrimitivePair::point_triangle,
+                                   {{X[j], x[t[0]], x[t[1]], x[t[2]]}}));
+      }
+      triangle_vertex.end_row();
+    }
+    if (parameters_.edge_edge_pairs)
+      make_edge_candidates(o, motion, obstacle_tree, margin, measure, c);
+  }
+
+  void Contact::make_edge_candidates(unsigned int  o,
+                                     const Motion &motion,
+                                     const Tree   &obstacle_tree,
+                                     double        margin,
+                                     bool          measure,
+                                     Candidates   &c) const
+  {
+    const auto               &x  = motion.x;
+    const auto               *dx = motion.dx;
+    const auto               &X  = current_[o];
+    std::vector<unsigned int> edges;
+    EdgeMarks                 marks(obstacle_edges_[o].size());
+    auto                     &rows = c.edge_edge[o];
+    rows.clear();
+    for (unsigned int e = 0; e < shell_edges_.size(); ++e)
+    {
+      const auto [a, b] = shell_edges_[e];
+      edges_near(obstacle_tree, obstacle_triangle_edges_[o], marks,
+                 {x[a], x[b], x[a] + along(dx, a), x[b] + along(dx, b)},
+                 pair_reach(edge_offset(o, e)) + margin, edges);
+      for (const unsigned f : edges)
+      {
+        const auto [p, q] = obstacle_edges_[o][f];
+        rows.add(f, listed(measure, PrimitivePair::segment_segment,
+                           {{x[a], x[b], X[p], X[q]}}));
+      }
+      rows.end_row();
+    }
+  }
+
+  /// Self contact's lists: shell vertices against the shell triangles
+  /// they may pair with, and shell edges e against edges f > e.
+  void Contact::make_self_candidates(const Motion &motion,
+                                     const Tree   &shell_tree,
+                                     double        margin,
+                                     bool          measure,
+                                     Candidates   &c) const
+  {
+    const auto  &x  = motion.x;
+    const auto  *dx = motion.dx;
+    const double activation =
+        parameters_.method == Method::barrier ? activation_ : 0.0;
+    Hits  hits;
+    auto &vertex_triangle = c.self_vertex_triangle;
+    vertex_triangle.clear();
+    for (const unsigned v : shell_vertices_)
+    {
+      hits.clear();
+      shell_tree.query(
+          bgi::intersects(box_of({x[v], x[v] + along(dx, v)},
+                                 self_reach(v, activation) + margin)),
+          std::back_inserter(hits));
+      for (const auto &hit : hits)
+      {
+        if (!self_pair_allowed(v, hit.second))
+          continue;
+        const auto &t = shell_triangles_[hit.second];
+        vertex_triangle.add(hit.second,
+                            listed(measure, PrimitivePair::point_triangle,
+                                   {{x[v], x[t[0]], x[t[1]], x[t[2]]}}));
+      }
+      vertex_triangle.end_row();
+    }
+    c.self_edge_edge.clear();
+    if (!parameters_.edge_edge_pairs)
+      return;
+    std::vector<unsigned int> edges;
+    EdgeMarks                 marks(shell_edges_.size());
+    for (unsigned int e = 0; e < shell_edges_.size(); ++e)
+    {
+      const auto [a, b] = shell_edges_[e];
+      edges_near(shell_tree, shell_triangle_edges_, marks,
+                 {x[a], x[b], x[a] + along(dx, a), x[b] + along(dx, b)},
+                 self_edge_reach(e, activation) + margin, edges);
+      for (const unsigned f : edges)
+      {
+        if (f <= e || !self_edge_pair_allowed(e, f))
+          continue;
+        const auto [p, q] = shell_edges_[f];
+        c.self_edge_edge.add(f, listed(measure, PrimitivePair::segment_segment,
+                                       {{x[a], x[b], x[p], x[q]}}));
+      }
+      c.self_edge_edge.end_row();
+    }
+  }
+
+  /// Makes candidates_ anew at the shell's positions x and the obstacles'
+  /// present ones unless they still cover them; returns the screens.
+  void Contact::update_candidates(const std::vector<Point<3>> &x,
+                                  std::vector<Screen>         &obstacle_screens,
+                                  Screen &self_screen) const
+  {
+    const Motion still{x, nullptr, invalid_obstacle, nullptr};
+    if (covers(still, obstacle_screens, self_screen))
+      return;
+    Candidates &c = candidates_;
+    c.margin      = candidate_margin();
+    c.shell     = x;
+    c.obstacles = current_;
+    c.vertex_triangle.resize(current_.size());
+    c.triangle_vertex.resize(current_.size());
+    c.edge_edge.resize(current_.size());
+    const Tree shell_tree = shell_triangle_tree(x, nullptr, 0);
+    for (unsigned int o = 0; o < current_.size(); ++o)
+      make_obstacle_candidates(o, still, shell_tree, c.margin, true, c);
+    if (parameters_.self_contact)
+      make_self_candidates(still, shell_tree, c.margin, true, c);
+    obstacle_screens.assign(current_.size(), Screen());
+    self_screen = Screen();
+  }
+
+  /// Largest fraction of the motion that keeps every pair farther apart
+  /// than its offset: additive CCD on the listed pairs the screens do
+  /// not clear. The lists are candidates_ if they cover the motion, else
+  /// made for it alone (the shell's triangles and the moving obstacle
+  /// swept), for obstacle 'only' if given, else for all.
+  double Contact::filter_fraction(const Motion &motion, unsigned int only) const
+  {
+    std::vector<Screen> obstacle_screens;
+    Screen              self_screen;
+    const bool          cached = covers(motion, obstacle_screens, self_screen);
+    Candidates          swept;
+    if (!cached)
+    {
+      obstacle_screens.assign(current_.size(), Screen());
+      swept.vertex_triangle.resize(current_.size());
+      swept.triangle_vertex.resize(current_.size());
+      swept.edge_edge.resize(current_.size());
+      const Tree shell_tree = shell_triangle_tree(motion.x, motion.dx, 0);
+      for (unsigned int o = 0; o < current_.size(); ++o)
+        if (only == invalid_obstacle || o == only)
+          make_obstacle_candidates(o, motion, shell_tree, 0, false, swept);
+      if (parameters_.self_contact && only == invalid_obstacle)
+        make_self_candidates(motion, shell_tree, 0, false, swept);
+    }
+    const Candidates &c        = cached ? candidates_ : swept;
+    double            fraction = 1;
+    for (unsigned int o = 0; o < current_.size(); ++o)
+      if (only == invalid_obstacle || o == only)
+        fraction = std::min(fraction, obstacle_filter_fraction(
+                                          motion, o, c, obstacle_screens[o]));
+    if (parameters_.self_contact && only == invalid_obstacle)
+      fraction =
+          std::min(fraction, self_filter_fraction(motion, c, self_screen));
+    return fraction;
+  }
+} // namespace coshell::contact
+
+namespace coshell::contact
+{
+  using namespace dealii;
+
+  double Contact::obstacle_filter_fraction(const Motion     &motion,
+                                           unsigned int      o,
+                                           const Candidates &c,
+                                           const Screen     &screen) const
+  {
+    const auto &x         = motion.x;
+    const auto *dx        = motion.dx;
+    const auto *dX        = o == motion.moving ? motion.dX : nullptr;
+    const auto &X         = current_[o];
+    const auto &triangles = parameters_.obstacles[o].triangles;
+    double      fraction  = 1;
+    const auto  consider  = [&](double listed, PrimitivePair type,
+                              const Points4 &points, const Displacements &moves,
+                              double kept)
+    {
+      if (!screen.skips_filter(listed, kept, moves))
+        fraction = std::min(fraction, additive_ccd(type, points, moves, kept));
+    };
+    const auto &vertex_triangle = c.vertex_triangle[o];
+    for (unsigned int k = 0; k < shell_vertices_.size(); ++k)
+    {
+      const unsigned v    = shell_vertices_[k];
+      const double   kept = offset(o, true, v);
+      for (unsigned i = vertex_triangle.start[k];
+           i < vertex_triangle.start[k + 1]; ++i)
+      {
+        const auto &t = triangles[vertex_triangle.other[i]];
+        consider(
+            vertex_triangle.distance[i], PrimitivePair::point_triangle,
+            {x[v], X[t[0]], X[t[1]], X[t[2]]},
+            {along(dx, v), along(dX, t[0]), along(dX, t[1]), along(dX, t[2])},
+            kept);
+      }
+    }
+    const auto &triangle_vertex = c.triangle_vertex[o];
+    for (unsigned int j = 0; j < X.size(); ++j)
+      for (unsigned i = triangle_vertex.start[j];
+           i < triangle_vertex.start[j + 1]; ++i)
+      {
+        const unsigned triangle = triangle_vertex.other[i];
+        const auto    &t        = shell_triangles_[triangle];
+        consider(
+            triangle_vertex.distance[i], PrimitivePair::point_triangle,
+            {X[j], x[t[0]], x[t[1]], x[t[2]]},
+            {along(dX, j), along(dx, t[0]), along(dx, t[1]), along(dx, t[2])},
+            offset(o, false, triangle));
+      }
+    if (!parameters_.edge_edge_pairs)
+      return fraction;
+    const auto &edge_edge = c.edge_edge[o];
+    for (unsigned int e = 0; e < shell_edges_.size(); ++e)
+    {
+      const auto [a, b] = shell_edges_[e];
+      const double kept = edge_offset(o, e);
+      for (unsigned i = edge_edge.start[e]; i < edge_edge.start[e + 1]; ++i)
+      {
+        const auto [p, q] = obstacle_edges_[o][edge_edge.other[i]];
+        consider(edge_edge.distance[i], PrimitivePair::segment_segment,
+                 {x[a], x[b], X[p], X[q]},
+                 {along(dx, a), along(dx, b), along(dX, p), along(dX, q)},
+                 kept);
+      }
+    }
+    return fraction;
+  }
+
+  double Contact::self_filter_fraction(const Motion     &motion,
+                                       const Candidates &c,
+                                       const Screen     &screen) const
+  {
+    const auto &x        = motion.x;
+    const auto *dx       = motion.dx;
+    double      fraction = 1;
+    const auto  consider = [&](double listed, PrimitivePair type,
+                              const std::array<unsigned, 4> &ids, double kept)
+    {
+      const Displacements moves{{along(dx, ids[0]), along(dx, ids[1]),
+                                 along(dx, ids[2]), along(dx, ids[3])}};
+      if (!screen.skips_filter(listed, kept, moves))
+        fraction = std::min(
+            fraction,
+            additive_ccd(type, {{x[ids[0]], x[ids[1]], x[ids[2]], x[ids[3]]}},
+                         moves, kept));
+    };
+    const auto &vertex_triangle = c.self_vertex_triangle;
+    for (unsigned int k = 0; k < shell_vertices_.size(); ++k)
+    {
+      const unsigned v = shell_vertices_[k];
+      for (unsigned i = vertex_triangle.start[k];
+           i < vertex_triangle.start[k + 1]; ++i)
+      {
+        const unsigned triangle = vertex_triangle.other[i];
+        const auto    &t        = shell_triangles_[triangle];
+        consider(vertex_triangle.distance[i], PrimitivePair::point_triangle,
+                 {v, t[0], t[1], t[2]}, self_offset(v, triangle));
+      }
+    }
+    const auto &edge_edge = c.self_edge_edge;
+    for (unsigned int e = 0; e + 1 < edge_edge.start.size(); ++e)
+      for (unsigned i = edge_edge.start[e]; i < edge_edge.start[e + 1]; ++i)
+      {
+        const unsigned f = edge_edge.other[i];
+        consider(edge_edge.distance[i], PrimitivePair::segment_segment,
+                 {shell_edges_[e][0], shell_edges_[e][1], shell_edges_[f][0],
+                  shell_edges_[f][1]},
+                 self_edge_offset(e, f));
+      }
+    return fraction;
+  }
+} // namespace coshell::contact
