@@ -115,14 +115,25 @@ def check_plunger_force(checks, forces, args, output):
     return time, displacement, push
 
 
+def inside_nozzle(x, args):
+    return (x > args.nozzle_start) & (x < args.nozzle_tip)
+
+
 def check_fold_and_exit(checks, history, args):
     chord = rim_chord(history)
     centre_x = column(history, "optic_ux")
-    in_nozzle = (centre_x > args.nozzle_start) & (centre_x < args.nozzle_tip)
+    # The width counts while the centre and both rim points are inside the
+    # nozzle: as the centre reaches the tip, a rim point may already be out
+    # and opening (x = 16.7 at the tip in a frictionless run), and earlier
+    # one may still be in the taper.
+    in_nozzle = inside_nozzle(centre_x, args)
+    for rim in ("rim_yp_ux", "rim_ym_ux"):
+        in_nozzle &= inside_nozzle(column(history, rim), args)
     folded = chord[in_nozzle].max() if in_nozzle.any() else math.inf
     print(f"optic width across the axis: {chord[0]:.4g} mm at rest, at most "
-          f"{folded:.4g} mm while its centre is in the nozzle (inner "
-          f"diameter {2 * args.nozzle_radius:.4g} mm)")
+          f"{folded:.4g} mm while its centre and rim are in the nozzle "
+          f"(inner diameter {2 * args.nozzle_radius:.4g} mm; "
+          f"{int(in_nozzle.sum())} steps)")
     checks("the optic folds to the nozzle's diameter and its centre passes "
            "the nozzle", in_nozzle.any() and folded <= 2 * args.nozzle_radius)
     trailing = -6.3 + column(history, "trail_ux")
