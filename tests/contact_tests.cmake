@@ -63,6 +63,18 @@ coshell_contact_test(contact.incline_friction.frictionless ${incline}
 coshell_contact_test(contact.incline_friction.sticking ${incline}
   ARGS --set "Loads/Gravity=1703.489, 0, -9660.965"
   --change centre_ux 0.015 0.04 1e-4 --gap-nonnegative)
+# A floor on friction's smoothing length (Stiction displacement, here
+# 1000 and 100 times IPC's v dt = 1e-6 mm): sliding keeps Coulomb's law
+# (the slip per step, about 0.05 mm, is far above the floor); sticking
+# becomes a creep of less than the floor per step, asserted as less than
+# 25 floors over the 25 steps (the price of the floor).
+coshell_contact_test(contact.incline_friction.sliding_stiction_floor ${incline}
+  ARGS --set "Contact/Stiction displacement=1e-3"
+  --slope centre_ux 0.01 0.04 1511.54 0.02 --gap-nonnegative)
+coshell_contact_test(contact.incline_friction.sticking_stiction_floor ${incline}
+  ARGS --set "Contact/Stiction displacement=1e-4"
+  --set "Loads/Gravity=1703.489, 0, -9660.965"
+  --change centre_ux 0.015 0.04 2.5e-3 --gap-nonnegative)
 # The same two with edge-edge pairs, which now carry the obstacle's
 # friction too: a flat plate on a flat plane feels both kinds of pair
 # (IPC counts both), and when the edge pairs were frictionless part of

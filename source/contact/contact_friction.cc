@@ -2,7 +2,8 @@
 // section 5): the tangential relative displacement u of the pair's closest
 // points over the step, against the obstacle's, meets the force
 // F = -mu lambda f1(|u|) u / |u|, with f1(x) = 2x/eps - x^2/eps^2 below
-// eps = (stiction velocity) * (step duration) and 1 above. The pairs, their
+// eps = max((stiction velocity) * (step duration), stiction displacement)
+// and 1 above. The pairs, their
 // normal force lambda, normal n and closest point's weights are those of
 // the last converged state (lagged), fixed through the step. The same for
 // shell against obstacle and against itself, vertex-triangle and edge-edge
@@ -122,8 +123,9 @@ namespace coshell::contact
   {
     const Pair  &pair = lagged.pair;
     const double mu   = friction_coefficient(pair);
-    const double eps  = parameters_.stiction_velocity *
-                       std::max(target_time_ - saved_time_, 0.0);
+    const double eps  = std::max(parameters_.stiction_velocity *
+                                     std::max(target_time_ - saved_time_, 0.0),
+                                 parameters_.stiction_displacement);
     if (!(eps > 0) || lagged.force == 0)
       return;
     const Tensor<1, 3>            normal = lagged.normal / lagged.normal.norm();

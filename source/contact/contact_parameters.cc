@@ -75,6 +75,14 @@ namespace coshell::contact
         "a sticking contact creeps at a fraction of it. In statics the "
         "pseudo-time of a step stands for its duration.");
     prm.declare_entry(
+        "Stiction displacement", "0", Patterns::Double(0),
+        "Friction: the least tangential slip, length units, over which "
+        "friction is smoothed in a step, whatever the step's duration: "
+        "the smoothing length is the larger of this and Stiction velocity "
+        "times the step. With 0 (the default) it is IPC's v dt alone, "
+        "which a step cut shrinks with the step, stiffening friction "
+        "where Newton already struggles.");
+    prm.declare_entry(
         "Edge-edge pairs", "false", Patterns::Bool(),
         "Also keep shell edges from obstacle edges (and, with Self "
         "contact, from shell edges), with the same friction, so that "
@@ -120,6 +128,7 @@ namespace coshell::contact
     project_tangent_on_retry = prm.get_bool("Projected tangent on retry");
     project_tangent_on_stall = prm.get_bool("Projected tangent on stall");
     stiction_velocity        = prm.get_double("Stiction velocity");
+    stiction_displacement    = prm.get_double("Stiction displacement");
     local_minima_only        = prm.get("Pairs") == "local minima";
     self_contact             = prm.get_bool("Self contact");
     edge_edge_pairs          = prm.get_bool("Edge-edge pairs");

@@ -54,6 +54,9 @@ namespace coshell::contact
     /// Friction: tangential speed below which friction is smoothed (the
     /// creep speed of sticking), length / s.
     double stiction_velocity = 1e-3;
+    /// Friction: the least smoothing length of a step, whatever its
+    /// duration (length; 0: v_s dt alone).
+    double stiction_displacement = 0;
     /// Shell edges against obstacle edges (with IPC's mollifier for
     /// nearly parallel edges), with the obstacle's friction.
     bool edge_edge_pairs = false;
