@@ -360,10 +360,11 @@ namespace coshell::contact
       std::vector<double>       distance;
       void                      clear();
       void                      add(unsigned int primitive, double listed);
-      void                      end_row()
-      {
-        start.push_back(other.size());
-      }
+      /// Closes the current row, sorted by primitive: the order of the
+      /// pairs, hence the round-off of every sum over them, then depends
+      /// on nothing but the pairs (not on the R-tree, not on when the
+      /// lists were made), so a restarted run repeats the uninterrupted one.
+      void end_row();
     };
     /// The rows of every kind of pair: per obstacle, shell vertices (in
     /// the order of shell_vertices_) against its triangles, its vertices
@@ -402,17 +403,17 @@ namespace coshell::contact
       const std::vector<dealii::Tensor<1, 3>> *dX;
     };
     static constexpr unsigned int invalid_obstacle = -1;
-    /// Made anew in const functions too (self_couplings()): a cache.
-    mutable Candidates candidates_;
-    /// How far beyond its reach a pair is listed: the shell may move half
-    /// of it before the lists are made anew (length).
+    Candidates                    candidates_;
+    /// How far beyond its reach a pair is listed (length): the shell and
+    /// an obstacle may together drift this far (the shell half of it with
+    /// self contact) before the lists are made anew.
     double candidate_margin() const;
     bool   covers(const Motion        &motion,
                   std::vector<Screen> &obstacle_screens,
                   Screen              &self_screen) const;
     void   update_candidates(const std::vector<dealii::Point<3>> &x,
                              std::vector<Screen> &obstacle_screens,
-                             Screen              &self_screen) const;
+                             Screen              &self_screen);
     void   make_obstacle_candidates(unsigned int  o,
                                     const Motion &motion,
                                     const Tree   &shell_tree,
@@ -433,13 +434,23 @@ namespace coshell::contact
     /// The step filter: the largest fraction of the motion that keeps
     /// every pair (of obstacle 'only', or of all and self contact) apart.
     double filter_fraction(const Motion &motion, unsigned int only) const;
-    double obstacle_filter_fraction(const Motion     &motion,
-                                    unsigned int      o,
-                                    const Candidates &c,
-                                    const Screen     &screen) const;
-    double self_filter_fraction(const Motion     &motion,
-                                const Candidates &c,
-                                const Screen     &screen) const;
+    static double pair_filter_fraction(const Screen        &screen,
+                                       double               listed,
+                                       PrimitivePair        type,
+                                       const Points4       &points,
+                                       const Displacements &moves,
+                                       double               offset);
+    double        obstacle_filter_fraction(const Motion     &motion,
+                                           unsigned int      o,
+                                           const Candidates &c,
+                                           const Screen     &screen) const;
+    double        edge_filter_fraction(const Motion     &motion,
+                                       unsigned int      o,
+                                       const Candidates &c,
+                                       const Screen     &screen) const;
+    double        self_filter_fraction(const Motion     &motion,
+                                       const Candidates &c,
+                                       const Screen     &screen) const;
     /// Boxes of obstacle o's triangles, swept by dX if given.
     Tree
     obstacle_triangle_tree(unsigned int                             o,
