@@ -233,6 +233,9 @@ coshell_bad_input_test(contact_negative_self_friction
   "Contact/Self contact friction coefficient: -0.2 is negative"
   ${COSHELL_PRM}/contact/self_friction_incline.prm
   --set "Contact/Self contact friction coefficient=-0.2")
+coshell_bad_input_test(contact_negative_stiction_displacement
+  "Contact/Stiction displacement=-1.*does not match"
+  ${plane_scene} --set "Contact/Stiction displacement=-1")
 coshell_bad_input_test(contact_unparsable_motion
   "Contact/Obstacle 1/Translation: cannot parse '0.*-0.3..'"
   ${plane_scene} --set "Contact/Obstacle 1/Translation=0$<SEMICOLON> 0$<SEMICOLON> -0.3**")
