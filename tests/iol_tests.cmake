@@ -28,6 +28,15 @@ function(coshell_haptic_test name membrane)
 endfunction()
 coshell_haptic_test(iol.haptic_compression.andes andes --rtol 0.01)
 coshell_haptic_test(iol.haptic_compression.cst cst --stiffer-than 1.4)
+# One modified-L haptic (lens.geo haptic_type = 1: a straight leg from the
+# optic rim, a 90-degree knee of 0.6 mm centre-line radius, an arm of
+# 4.5 mm radius to 15 degrees past its farthest point), clamped at the
+# rim, 0.01 mN at its tip towards the lens centre; the checker sets the
+# mesh, the load and the tip from the same geometry. Castigliano on the
+# leg, knee and arm: 2.1774e-5 N/mm. ANDES's finest level (3 refinements
+# of 0.22 mm) is asserted within 1 %.
+coshell_haptic_test(iol.haptic_compression.modified_l.andes andes
+                    --haptic-type 1 --rtol 0.01)
 
 # The whole lens between two concave clamps closing from 13.1 to 10 mm
 # (ISO 11979-3): the barrier's gap stays non-negative at every step, the
@@ -122,6 +131,16 @@ coshell_iol_test(iol.injection.fold.frictionless check_injection.py
                  --set "Stage 2/Analysis type=none"
                  --set "Stage 3/Analysis type=none"
                  ${frictionless}
+                 --fold-only 3.7)
+# The fold of the modified-L lens (lens.geo haptic_type = 1, coarse):
+# the same checks (measured: optic 3.55 mm across, smallest gap 1.2e-4
+# mm, energy remainder -0.008 % of the work).
+set(coarse_modified_l "${coarse_lens}, haptic_type = 1")
+coshell_iol_test(iol.injection.fold.modified_l check_injection.py
+                 injection.prm
+                 --set ${coarse_modified_l}
+                 --set "Stage 2/Analysis type=none"
+                 --set "Stage 3/Analysis type=none"
                  --fold-only 3.7)
 # Co-rotational against linear kinematics on the same fold, to t = 0.6 s
 # (wings 54 degrees closed): the optic's line rim-centre-rim stays within

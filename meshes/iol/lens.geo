@@ -1,14 +1,29 @@
-// One-piece intraocular lens with two C-loop haptics, flat in z = 0:
-// the mid-surface of the shell. Units: mm. The optic's thickness profile
+// One-piece intraocular lens with two haptics, C-loop (haptic_type = 0,
+// the default) or modified-L (haptic_type = 1), flat in z = 0: the
+// mid-surface of the shell. Units: mm. The optic's thickness profile
 // and the haptics' thickness are set in the prm (Material/Thickness as a
 // function of region and position), not here.
 //
-// Each haptic's centre line is a circular arc of radius haptic_radius
-// whose farthest point from the lens centre lies on the x axis, the
-// haptic's outer edge there at overall_diameter / 2 (the second haptic is the first turned by 180 degrees).
-// The arc starts where it crosses the optic rim and runs tip_sweep
-// degrees past its farthest point. Change any constant with
-// Mesh/Gmsh parameters in the prm (e.g. "haptic_width = 0.5").
+// C-loop: each haptic's centre line is a circular arc of radius
+// haptic_radius whose farthest point from the lens centre lies on the x
+// axis, the haptic's outer edge there at overall_diameter / 2 (the second
+// haptic is the first turned by 180 degrees). The arc starts where it
+// crosses the optic rim and runs tip_sweep degrees past its farthest
+// point.
+//
+// Modified-L: a straight leg leaves the optic, a knee (a circular fillet
+// of centre-line radius knee_radius) turns it by knee_angle degrees, and a
+// long arm follows, a circular arc of radius arm_radius whose farthest
+// point lies on the x axis at overall_diameter / 2 (outer edge), from
+// arm_start degrees (about the arm's centre) to tip_sweep past that point.
+// The leg is tangent to the knee and the knee to the arm; the leg runs
+// back from the knee until it crosses the optic rim. With the defaults
+// the leg leaves the optic nearly radially, 1.7 mm long, and the arm
+// runs 85 degrees round the optic: the short leg and long arm of an L
+// whose corner is rounded, where the C-loop bends evenly all the way.
+//
+// Change any constant with Mesh/Gmsh parameters in the prm (e.g.
+// "haptic_width = 0.5, haptic_type = 1").
 //
 // Physical groups: surface 1 optic, surface 2 haptics. With
 // haptics_only = 1 the file instead holds one haptic without the optic,
@@ -25,10 +40,20 @@ DefineConstant[
   tip_sweep = 15,          // degrees past the farthest point
   optic_mesh_size = 0.55,  // mm, at level 0
   haptic_mesh_size = 0.22, // mm, at level 0
-  haptics_only = 0         // 1: one haptic alone, for its compression test
+  haptics_only = 0,        // 1: one haptic alone, for its compression test
+  haptic_type = 0,         // 0: C-loop, 1: modified-L
+  knee_radius = 0.6,       // mm, modified-L: centre-line radius of the knee
+  knee_angle = 90,         // degrees, modified-L: turn of the knee
+  arm_radius = 4.5,        // mm, modified-L: radius of the arm's centre line
+  arm_start = -70          // degrees, modified-L: the arm's start about its centre
 ];
 
 scale = 2^(-refinement_level);
+tip_angle = tip_sweep * Pi / 180;
+If (haptic_type != 0 && haptic_type != 1)
+  Error("lens.geo: haptic_type = %g; it must be 0 (C-loop) or 1 (modified-L)", haptic_type);
+EndIf
+If (haptic_type == 0)
 // Arc centre (rho, 0): the haptic's outer edge reaches overall_diameter / 2.
 rho = overall_diameter / 2 - haptic_width / 2 - haptic_radius;
 If (rho <= 0 || rho + optic_radius <= haptic_radius || haptic_radius - rho >= optic_radius)
@@ -36,9 +61,9 @@ If (rho <= 0 || rho + optic_radius <= haptic_radius || haptic_radius - rho >= op
 EndIf
 // Angle about the arc centre where the centre line crosses the optic rim.
 root_angle = -Acos((optic_radius^2 - rho^2 - haptic_radius^2) / (2 * haptic_radius * rho));
-tip_angle = tip_sweep * Pi / 180;
 // The strip of the lens reaches 0.6 mm into the optic and is cut there.
 start_angle = root_angle - (1 - haptics_only) * 0.6 / haptic_radius;
+EndIf
 
 // Annular sector about (rho, 0) from angle a0 to a1, radii r0 < r1, split
 // at mid angle so that every arc stays below 180 degrees.
@@ -59,18 +84,82 @@ Macro AnnularSector
   sector = news; Plane Surface(sector) = {loop};
 Return
 
-a0 = start_angle; a1 = tip_angle;
-r0 = haptic_radius - haptic_width / 2; r1 = haptic_radius + haptic_width / 2;
-Call AnnularSector;
+// Modified-L haptic as one surface bounded by its two offset outlines:
+// leg (straight), knee (about (kx, ky)), arm (about (arm_centre, 0), split
+// at mid angle), the square tip and the square root. Sets sector,
+// root_curve, tip_curve and the tip's centre (tip_x, tip_y).
+Macro ModifiedLOutline
+  If (knee_radius <= haptic_width / 2 || knee_angle <= 0 || knee_angle >= 180)
+    Error("lens.geo: the knee needs knee_radius (%g) above half the haptic width (%g) and 0 < knee_angle (%g) < 180", knee_radius, haptic_width / 2, knee_angle);
+  EndIf
+  arm_centre = overall_diameter / 2 - haptic_width / 2 - arm_radius;
+  beta = arm_start * Pi / 180;
+  If (arm_radius <= knee_radius || beta >= tip_angle)
+    Error("lens.geo: the arm (radius %g, from %g degrees) must be wider than the knee and start before its tip", arm_radius, arm_start);
+  EndIf
+  // The knee ends where the arm starts, with the arm's tangent; its
+  // centre lies on the arm's radius through that point.
+  kx = arm_centre + (arm_radius - knee_radius) * Cos(beta);
+  ky = (arm_radius - knee_radius) * Sin(beta);
+  gamma = beta - knee_angle * Pi / 180;
+  // The knee's start and the leg's direction (the knee's tangent there).
+  k0x = kx + knee_radius * Cos(gamma); k0y = ky + knee_radius * Sin(gamma);
+  dx = -Sin(gamma); dy = Cos(gamma);
+  // Back along the leg, |K0 - s d| = optic_radius at s = b - sqrt(b^2 - cq).
+  b = k0x * dx + k0y * dy; cq = k0x^2 + k0y^2 - optic_radius^2;
+  If (cq <= 0 || b <= 0 || b^2 < cq)
+    Error("lens.geo: the modified-L leg (knee at %g, %g) does not cross the optic rim (radius %g)", k0x, k0y, optic_radius);
+  EndIf
+  leg = b - Sqrt(b^2 - cq) + (1 - haptics_only) * 0.6;
+  h = haptic_width / 2;
+  // Points on the outline: inner side (towards the turns' centres) and
+  // outer side, at the root, the knee's start, the arm's start, the arm's
+  // middle and the tip.
+  For side In {0:1}
+    sg = 1 - 2 * side; // +1 inner, -1 outer
+    rt[side] = newp; Point(rt[side]) = {k0x - leg * dx - sg * h * dy, k0y - leg * dy + sg * h * dx, 0};
+    ks[side] = newp; Point(ks[side]) = {kx + (knee_radius - sg * h) * Cos(gamma), ky + (knee_radius - sg * h) * Sin(gamma), 0};
+    am[side] = newp; Point(am[side]) = {arm_centre + (arm_radius - sg * h) * Cos(beta), (arm_radius - sg * h) * Sin(beta), 0};
+    mid = (beta + tip_angle) / 2;
+    mm[side] = newp; Point(mm[side]) = {arm_centre + (arm_radius - sg * h) * Cos(mid), (arm_radius - sg * h) * Sin(mid), 0};
+    tp[side] = newp; Point(tp[side]) = {arm_centre + (arm_radius - sg * h) * Cos(tip_angle), (arm_radius - sg * h) * Sin(tip_angle), 0};
+  EndFor
+  pk = newp; Point(pk) = {kx, ky, 0};
+  pa = newp; Point(pa) = {arm_centre, 0, 0};
+  c[0] = newl; Line(c[0]) = {rt[1], ks[1]};
+  c[1] = newl; Circle(c[1]) = {ks[1], pk, am[1]};
+  c[2] = newl; Circle(c[2]) = {am[1], pa, mm[1]};
+  c[3] = newl; Circle(c[3]) = {mm[1], pa, tp[1]};
+  c[4] = newl; Line(c[4]) = {tp[1], tp[0]};
+  c[5] = newl; Circle(c[5]) = {tp[0], pa, mm[0]};
+  c[6] = newl; Circle(c[6]) = {mm[0], pa, am[0]};
+  c[7] = newl; Circle(c[7]) = {am[0], pk, ks[0]};
+  c[8] = newl; Line(c[8]) = {ks[0], rt[0]};
+  c[9] = newl; Line(c[9]) = {rt[0], rt[1]};
+  loop = newll; Curve Loop(loop) = {c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7], c[8], c[9]};
+  sector = news; Plane Surface(sector) = {loop};
+  root_curve = c[9]; tip_curve = c[4];
+  tip_x = arm_centre + arm_radius * Cos(tip_angle); tip_y = arm_radius * Sin(tip_angle);
+Return
+
+If (haptic_type == 0)
+  a0 = start_angle; a1 = tip_angle;
+  r0 = haptic_radius - haptic_width / 2; r1 = haptic_radius + haptic_width / 2;
+  Call AnnularSector;
+  root_curve = c[5]; tip_curve = c[2];
+  tip_x = rho + haptic_radius * Cos(tip_angle); tip_y = haptic_radius * Sin(tip_angle);
+Else
+  Call ModifiedLOutline;
+EndIf
 
 If (haptics_only)
-  Physical Curve("root", 1) = {c[5]};
-  Physical Curve("tip", 2) = {c[2]};
+  Physical Curve("root", 1) = {root_curve};
+  Physical Curve("tip", 2) = {tip_curve};
   Physical Surface("haptic", 2) = {sector};
   MeshSize{PointsOf{Surface{sector};}} = haptic_mesh_size * scale;
 Else
   // A round tip, then the second haptic, then the optic, made conforming.
-  cap = news; Disk(cap) = {rho + haptic_radius * Cos(tip_angle), haptic_radius * Sin(tip_angle), 0, haptic_width / 2};
+  cap = news; Disk(cap) = {tip_x, tip_y, 0, haptic_width / 2};
   haptic() = BooleanUnion{ Surface{sector}; Delete; }{ Surface{cap}; Delete; };
   second() = Rotate{{0, 0, 1}, {0, 0, 0}, Pi}{ Duplicata{ Surface{haptic(0)}; } };
   optic = news; Disk(optic) = {0, 0, 0, optic_radius};
