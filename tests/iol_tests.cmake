@@ -45,6 +45,10 @@ coshell_haptic_test(iol.haptic_compression.modified_l.andes andes
 # The force curve is written to compression.csv (mN against mm).
 coshell_iol_test(iol.compression_iso11979 check_compression.py
                  compression_iso11979.prm --set ${no_vtu})
+# The same with Linear solver/Reuse factorization: the same assertions.
+coshell_iol_test(iol.compression_iso11979.kept_factors check_compression.py
+                 compression_iso11979.prm --set ${no_vtu}
+                 --set "Linear solver/Reuse factorization=true")
 
 # The paper's Fig. 3 (the lens mesh; 473 triangles there, 480 here,
 # asserted within 2 %) and the compression sequence, regenerated from a

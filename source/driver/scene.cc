@@ -229,14 +229,16 @@ namespace coshell::driver
     io::LevelResult result =
         (this->*analyses().at(analysis_type_))(model, directory, log);
     result.wall_time_s.setup += setup;
-    result.wall_time_s.total = seconds_since(start);
-    result.level             = level;
-    result.h                 = longest_edge(surface);
-    result.n_cells           = surface.n_active_cells();
-    result.n_vertices        = surface.n_used_vertices();
-    result.n_dofs            = model.n_dofs();
-    result.reference         = quantities_.references();
-    result.cholmod_fallbacks = linear_solver_.cholmod_fallbacks();
+    result.wall_time_s.total    = seconds_since(start);
+    result.level                = level;
+    result.h                    = longest_edge(surface);
+    result.n_cells              = surface.n_active_cells();
+    result.n_vertices           = surface.n_used_vertices();
+    result.n_dofs               = model.n_dofs();
+    result.reference            = quantities_.references();
+    result.cholmod_fallbacks    = linear_solver_.cholmod_fallbacks();
+    result.factorizations       = linear_solver_.factorizations();
+    result.reused_factor_solves = linear_solver_.reused_factor_solves();
     for (const auto &[name, value] : result.qoi)
       log << "  " << name << " = " << value << '\n';
     for (const auto &[name, error] : result.relative_errors())

@@ -28,6 +28,11 @@ namespace coshell::io
     json["linear_solver_iterations"] = linear_solver_iterations;
     if (cholmod_fallbacks > 0)
       json["cholmod_fallbacks"] = cholmod_fallbacks;
+    if (reused_factor_solves > 0)
+    {
+      json["factorizations"]       = factorizations;
+      json["reused_factor_solves"] = reused_factor_solves;
+    }
     Json &times       = json["wall_time_s"];
     times["setup"]    = wall_time_s.setup;
     times["assemble"] = wall_time_s.assemble;

@@ -14,6 +14,7 @@
 
 #include <Teuchos_ParameterList.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <stdexcept>
 
@@ -94,6 +95,18 @@ namespace coshell::solvers
     prm.declare_entry("Maximum iterations", "10000", Patterns::Integer(1),
                       "Iteration limit of iterative methods "
                       "(dimensionless).");
+    prm.declare_entry(
+        "Reuse factorization", "false", Patterns::Bool(),
+        "umfpack (and cholmod's fallback to it): keep the LU factors of an "
+        "earlier matrix and solve a new matrix of the same size by GMRES "
+        "(right preconditioned, to 'Tolerance') with them, refactoring "
+        "only when GMRES needs more than 'Reuse iterations', or needed "
+        "more than half of them the time before. For sequences of nearby "
+        "matrices: the Newton iterations of a step, consecutive time "
+        "steps. Off: every matrix is factorized.");
+    prm.declare_entry("Reuse iterations", "10", Patterns::Integer(1),
+                      "GMRES iterations allowed with kept factors before "
+                      "the matrix is factorized (dimensionless).");
     prm.declare_entry("AMG near-null space", "rigid body",
                       Patterns::Selection("rigid body|none"),
                       "Selects the AMG near-null space. "
@@ -126,6 +139,8 @@ namespace coshell::solvers
     amg_smoother_              = prm.get("AMG smoother");
     amg_smoother_sweeps_       = prm.get_integer("AMG smoother sweeps");
     amg_aggregation_threshold_ = prm.get_double("AMG aggregation threshold");
+    reuse_factorization_       = prm.get_bool("Reuse factorization");
+    reuse_iterations_          = prm.get_integer("Reuse iterations");
     prm.leave_subsection();
   }
 
@@ -174,7 +189,19 @@ namespace coshell::solvers
     }
     if (method_ == "umfpack" || method_ == "cholmod")
     {
+      unfactorized_ = nullptr;
+      if (reuse_factorization_ && !factors_worn_out_ &&
+          factorizations_before_retry_ == 0 &&
+          backend_->umfpack.has_factors_of_size(matrix.m()))
+      {
+        unfactorized_ = &matrix;
+        return;
+      }
+      if (factorizations_before_retry_ > 0)
+        --factorizations_before_retry_;
       backend_->umfpack.factorize(matrix);
+      ++factorizations_;
+      factors_worn_out_ = false;
       return;
     }
     ensure_mpi_initialized();
@@ -298,6 +325,14 @@ namespace coshell::solvers
     }
     if (method_ == "umfpack" || method_ == "cholmod")
     {
+      if (unfactorized_ && solve_with_kept_factors(x, b))
+        return;
+      if (unfactorized_) // GMRES gave up: factorize after all
+      {
+        backend_->umfpack.factorize(*unfactorized_);
+        ++factorizations_;
+        unfactorized_ = nullptr;
+      }
       backend_->umfpack.solve(x, b);
       last_iterations_ = 1;
       return;
@@ -313,6 +348,50 @@ namespace coshell::solvers
     else
       solve_krylov(solution, rhs, b.l2_norm());
     backend_->gather(solution, x);
+  }
+
+  namespace
+  {
+    /// The kept UMFPACK factors as a deal.II preconditioner.
+    struct KeptFactors
+    {
+      const UmfpackSolver &umfpack;
+      void vmult(Vector<double> &x, const Vector<double> &b) const
+      {
+        umfpack.apply_factors(x, b);
+      }
+    };
+  } // namespace
+
+  bool LinearSolver::solve_with_kept_factors(Vector<double>       &x,
+                                             const Vector<double> &b)
+  {
+    // Right preconditioning, so that GMRES measures the true residual
+    // |b - A x| against the tolerance, as a direct solve would meet it.
+    SolverControl control(reuse_iterations_, tolerance_ * b.l2_norm(), false,
+                          false);
+    SolverGMRES<Vector<double>>::AdditionalData gmres(reuse_iterations_ + 2,
+                                                      true);
+    x.reinit(b.size());
+    try
+    {
+      SolverGMRES<Vector<double>>(control, gmres)
+          .solve(*unfactorized_, x, b, KeptFactors{backend_->umfpack});
+    }
+    catch (const SolverControl::NoConvergence &)
+    {
+      factors_worn_out_            = true;
+      reuse_backoff_               = std::min(2 * reuse_backoff_ + 1, 32u);
+      factorizations_before_retry_ = reuse_backoff_;
+      return false;
+    }
+    reuse_backoff_   = 0;
+    last_iterations_ = control.last_step();
+    // Factors that needed more than half the allowance will soon fail:
+    // the next matrix is factorized instead of tried first.
+    factors_worn_out_ = 2 * control.last_step() > reuse_iterations_;
+    ++reused_factor_solves_;
+    return true;
   }
 
   void LinearSolver::solve_krylov(TrilinosWrappers::MPI::Vector       &x,

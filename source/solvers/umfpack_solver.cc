@@ -20,10 +20,14 @@ namespace coshell::solvers
     void          *numeric    = nullptr;
     unsigned int   n_analyses = 0;
     double         control[UMFPACK_CONTROL];
+    /// The same with no iterative refinement (apply_factors).
+    double control_no_refinement[UMFPACK_CONTROL];
 
     Data()
     {
       umfpack_di_defaults(control);
+      umfpack_di_defaults(control_no_refinement);
+      control_no_refinement[UMFPACK_IRSTEP] = 0;
     }
 
     ~Data()
@@ -90,6 +94,24 @@ namespace coshell::solvers
                          d.matrix.indices.data(), d.matrix.values.data(),
                          x.begin(), b.begin(), d.numeric, d.control, nullptr);
     Data::check(status, "solve");
+  }
+
+  bool UmfpackSolver::has_factors_of_size(const unsigned int n_rows) const
+  {
+    const Data &d = *data_;
+    return d.numeric && d.matrix.n_rows() == static_cast<int>(n_rows);
+  }
+
+  void UmfpackSolver::apply_factors(Vector<double>       &x,
+                                    const Vector<double> &b) const
+  {
+    const Data &d = *data_;
+    x.reinit(b.size(), true);
+    const int status = umfpack_di_solve(
+        UMFPACK_At, d.matrix.starts.data(), d.matrix.indices.data(),
+        d.matrix.values.data(), x.begin(), b.begin(), d.numeric,
+        d.control_no_refinement, nullptr);
+    Data::check(status, "solve with the kept factors");
   }
 
   unsigned int UmfpackSolver::n_symbolic_analyses() const

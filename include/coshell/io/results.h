@@ -27,6 +27,9 @@ namespace coshell::io
     /// Factorizations CHOLMOD refused (not positive definite), done by
     /// UMFPACK instead, over the run so far.
     unsigned int cholmod_fallbacks = 0;
+    /// With Linear solver/Reuse factorization: numeric factorizations, and
+    /// solves done by GMRES with kept factors instead.
+    unsigned int factorizations = 0, reused_factor_solves = 0;
     PhaseTimes   wall_time_s;
     unsigned int load_steps = 0, newton_iterations = 0;
     /// Dynamics: time steps, simulated time (s) and the wall time the time

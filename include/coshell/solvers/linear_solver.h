@@ -63,6 +63,16 @@ namespace coshell::solvers
     {
       return cholmod_fallbacks_;
     }
+    /// With "Reuse factorization": numeric factorizations done, and solves
+    /// done by GMRES with kept factors instead.
+    unsigned int factorizations() const
+    {
+      return factorizations_;
+    }
+    unsigned int reused_factor_solves() const
+    {
+      return reused_factor_solves_;
+    }
 
   private:
     std::string  method_                     = "cholmod";
@@ -75,11 +85,25 @@ namespace coshell::solvers
     std::string  amg_smoother_               = "Chebyshev";
     unsigned int amg_smoother_sweeps_        = 2;
     double       amg_aggregation_threshold_  = 1e-4;
+    bool         reuse_factorization_        = false;
+    unsigned int reuse_iterations_           = 10;
+    unsigned int factorizations_             = 0;
+    unsigned int reused_factor_solves_       = 0;
+    /// The matrix factorize() was given but left to GMRES with the kept
+    /// factors (reuse), and whether the kept factors are worn out.
+    const dealii::SparseMatrix<double> *unfactorized_     = nullptr;
+    bool                                factors_worn_out_ = true;
+    /// After GMRES with kept factors gave up, that many factorize() calls
+    /// factorize without trying them (doubling while attempts keep
+    /// failing), so that a run whose matrices jump pays little for trying.
+    unsigned int reuse_backoff_ = 0, factorizations_before_retry_ = 0;
 
     struct Backend;
     std::unique_ptr<Backend> backend_;
 
     void        initialize_amg();
+    bool        solve_with_kept_factors(dealii::Vector<double>       &x,
+                                        const dealii::Vector<double> &b);
     bool        is_amesos() const;
     bool        is_amg() const;
     void        solve_krylov(dealii::TrilinosWrappers::MPI::Vector       &x,

@@ -25,6 +25,12 @@ namespace coshell::solvers
                const dealii::Vector<double> &b) const;
     /// Symbolic analyses done so far (one per distinct pattern).
     unsigned int n_symbolic_analyses() const;
+    /// True once factorize() succeeded on a matrix of this size.
+    bool has_factors_of_size(unsigned int n_rows) const;
+    /// x = (L U)^-1 b with the factors of the last factorized matrix and no
+    /// iterative refinement: the preconditioner of a nearby matrix.
+    void apply_factors(dealii::Vector<double>       &x,
+                       const dealii::Vector<double> &b) const;
 
   private:
     struct Data;

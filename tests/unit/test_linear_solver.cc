@@ -1,0 +1,144 @@
+// LinearSolver with kept factors (Linear solver/Reuse factorization): a
+// matrix near the factorized one is solved by GMRES with the old factors
+// to the direct solve's answer; one far from it is factorized after all.
+#include <coshell/solvers/linear_solver.h>
+
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/sparsity_pattern.h>
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+namespace
+{
+  using namespace dealii;
+  using coshell::solvers::LinearSolver;
+
+  void configure(LinearSolver &solver, bool reuse)
+  {
+    ParameterHandler prm;
+    LinearSolver::declare_parameters(prm);
+    prm.enter_subsection("Linear solver");
+    prm.set("Method", "umfpack");
+    prm.set("Reuse factorization", reuse ? "true" : "false");
+    prm.set("Reuse iterations", "10");
+    prm.set("Tolerance", "1e-12");
+    prm.leave_subsection();
+    solver.parse_parameters(prm);
+  }
+
+  /// A non-symmetric tridiagonal matrix (a 1-D convection-diffusion
+  /// operator) whose convection is 'convection'.
+  struct Tridiagonal
+  {
+    SparsityPattern      pattern;
+    SparseMatrix<double> matrix;
+
+    explicit Tridiagonal(unsigned int n)
+    {
+      DynamicSparsityPattern dsp(n, n);
+      for (unsigned int i = 0; i < n; ++i)
+        for (unsigned int j = (i > 0 ? i - 1 : 0); j < std::min(n, i + 2); ++j)
+          dsp.add(i, j);
+      pattern.copy_from(dsp);
+      matrix.reinit(pattern);
+    }
+
+    const SparseMatrix<double> &set(double convection)
+    {
+      for (unsigned int i = 0; i < matrix.m(); ++i)
+      {
+        matrix.set(i, i, 2.0 + 0.01 * i);
+        if (i > 0)
+          matrix.set(i, i - 1, -1.0 - convection);
+        if (i + 1 < matrix.m())
+          matrix.set(i, i + 1, -1.0 + convection);
+      }
+      return matrix;
+    }
+  };
+
+  Vector<double> direct_solution(const SparseMatrix<double> &matrix,
+                                 const Vector<double>       &b)
+  {
+    LinearSolver direct;
+    configure(direct, false);
+    direct.factorize(matrix, false);
+    Vector<double> x(b.size());
+    direct.solve(x, b);
+    return x;
+  }
+} // namespace
+
+TEST(LinearSolverReuse, NearbyMatrixIsSolvedWithTheKeptFactors)
+{
+  Tridiagonal    system(200);
+  Vector<double> b(200);
+  for (unsigned int i = 0; i < b.size(); ++i)
+    b[i] = 1.0 + std::sin(0.1 * i);
+  LinearSolver solver;
+  configure(solver, true);
+  Vector<double> x(b.size());
+  solver.factorize(system.set(0.10), false);
+  solver.solve(x, b);
+  // 2 % more convection: the kept factors precondition it well.
+  const SparseMatrix<double> &nearby = system.set(0.102);
+  solver.factorize(nearby, false);
+  solver.solve(x, b);
+  EXPECT_EQ(solver.factorizations(), 1u);
+  EXPECT_EQ(solver.reused_factor_solves(), 1u);
+  EXPECT_GT(solver.last_iterations(), 1u);
+  // A second right-hand side before the next factorize() must also be
+  // solved for the new matrix, not with the old factors alone.
+  Vector<double> b2(b.size()), x2(b.size());
+  for (unsigned int i = 0; i < b.size(); ++i)
+    b2[i] = std::cos(0.05 * i);
+  solver.solve(x2, b2);
+  Vector<double> error = direct_solution(nearby, b);
+  error -= x;
+  EXPECT_LT(error.linfty_norm(), 1e-9 * x.linfty_norm());
+  error = direct_solution(nearby, b2);
+  error -= x2;
+  EXPECT_LT(error.linfty_norm(), 1e-9 * x2.linfty_norm());
+}
+
+TEST(LinearSolverReuse, FarMatrixIsFactorizedAfterAll)
+{
+  Tridiagonal    system(200);
+  Vector<double> b(200), x(200);
+  b = 1.0;
+  LinearSolver solver;
+  configure(solver, true);
+  solver.factorize(system.set(0.0), false);
+  solver.solve(x, b);
+  // Convection of the order of the diffusion: GMRES with the symmetric
+  // operator's factors does not get there in 10 iterations.
+  const SparseMatrix<double> &far = system.set(0.9);
+  solver.factorize(far, false);
+  solver.solve(x, b);
+  EXPECT_EQ(solver.factorizations(), 2u);
+  EXPECT_EQ(solver.reused_factor_solves(), 0u);
+  Vector<double> error = direct_solution(far, b);
+  error -= x;
+  EXPECT_LT(error.linfty_norm(), 1e-12 * x.linfty_norm());
+}
+
+TEST(LinearSolverReuse, OffByDefault)
+{
+  Tridiagonal    system(50);
+  Vector<double> b(50), x(50);
+  b = 1.0;
+  LinearSolver     solver;
+  ParameterHandler prm;
+  LinearSolver::declare_parameters(prm);
+  prm.enter_subsection("Linear solver");
+  prm.set("Method", "umfpack");
+  prm.leave_subsection();
+  solver.parse_parameters(prm);
+  solver.factorize(system.set(0.1), false);
+  solver.solve(x, b);
+  solver.factorize(system.set(0.1001), false);
+  solver.solve(x, b);
+  EXPECT_EQ(solver.reused_factor_solves(), 0u);
+}
