@@ -47,6 +47,30 @@ coshell_contact_test(contact.plate_on_plane.penalty_dynamic contact/plate_on_pla
   ARGS --set "Analysis/Type=dynamic" --set "Contact/Method=penalty"
   --reaction fz -0.0005886 1e-6 --last-gap -0.00017157 1e-3)
 
+# The penalty's step filter. The plane rises at 600 mm/s under the plate,
+# 0.6 mm per 1 ms step: more than the plate's 0.5 mm thickness, so in the
+# first step it jumps past the plate's mid-surface, and a penalty, which
+# only acts on penetration, never sees it: without the filter the plate
+# falls freely as if the plane were not there (backward Euler:
+# uz = -g dt^2 n (n + 1) / 2 = -0.14715 mm after n = 5 steps). With
+# Penalty step filter = 0.9 every move of the plane and every correction
+# stops short of 0.9 of the offset (h/2 = 0.25 mm): the plate rides on the
+# plane, its mid-surface between 0.225 and 0.25 mm above the plane's
+# 2.73 mm (asserted 2.98 mm within 1 %), and the largest penetration stays
+# below (1 - 0.9) h/2 = 0.025 mm.
+set(rising_plane
+    --set "Analysis/Type=dynamic" --set "Contact/Method=penalty"
+    --set "Contact/Obstacle 1/Translation=0$<SEMICOLON> 0$<SEMICOLON> -0.27 + 600 * t"
+    --set "Time integration/End time=0.005" --set "Output/Write VTU=false"
+    --set "Quantities of interest/Point values=centre_uz: 5 5 0 uz")
+coshell_contact_test(contact.plate_on_plane.penalty_step_filter
+  contact/plate_on_plane.prm
+  ARGS ${rising_plane} --set "Contact/Penalty step filter=0.9"
+  --final centre_uz 2.98 0.01 --summary largest_penetration 0 0.025)
+coshell_contact_test(contact.plate_on_plane.penalty_tunnels_without_filter
+  contact/plate_on_plane.prm
+  ARGS ${rising_plane} --final centre_uz -0.14715 1e-6)
+
 # Friction on an incline (gravity tilted by theta, mu = 0.2, dynamics):
 # at theta = 20 deg (tan theta > mu) the plate slides with
 # a = g (sin theta - mu cos theta) = 1511.54 mm/s^2, fitted over
@@ -236,6 +260,9 @@ coshell_bad_input_test(contact_negative_self_friction
 coshell_bad_input_test(contact_negative_stiction_displacement
   "Contact/Stiction displacement=-1.*does not match"
   ${plane_scene} --set "Contact/Stiction displacement=-1")
+coshell_bad_input_test(contact_penalty_step_filter_of_one
+  "Contact/Penalty step filter: 1 must be below 1"
+  ${plane_scene} --set "Contact/Penalty step filter=1")
 coshell_bad_input_test(contact_unparsable_motion
   "Contact/Obstacle 1/Translation: cannot parse '0.*-0.3..'"
   ${plane_scene} --set "Contact/Obstacle 1/Translation=0$<SEMICOLON> 0$<SEMICOLON> -0.3**")

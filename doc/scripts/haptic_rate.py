@@ -4,8 +4,10 @@ default lens): steps per second of the push with the plunger engaging the
 folded lens, in the scene's own mode (backward Euler, full Newton, barrier
 contact) and in the linearized modes a training simulator's haptic loop
 would run (one linear solve per step: `linearized implicit euler`), with
-the barrier and with the penalty; all with the scene's friction, the
-linearized modes with a 0.01 mm floor on its smoothing length. The fold is run once, in the scene's
+the barrier and with the penalty, without and with its step filter; all
+with the scene's friction, the linearized modes with a 0.01 mm floor on
+its smoothing length and with kept factors (GMRES with an earlier step's
+LU). The fold is run once, in the scene's
 mode, and written as a checkpoint; each mode restarts from it for --push
 seconds at a fixed step. Per mode: steps per second, the per-step split
 (assembly with contact, linear solver, the rest), contact detection per
@@ -42,12 +44,19 @@ QUIET = ["Parallel/Threads=1", "Output/Write VTU=false",
 # smoothing length: with IPC's v dt alone (0.1 mm/s x 1 ms = 1e-4 mm) the
 # linearized lens blew up (membrane strain 3.3; doc/performance.md).
 FLOOR = ["Contact/Stiction displacement=0.01"]
+# One linear solve per step on slowly changing matrices: GMRES with the
+# factors of an earlier step (doc/performance.md, "Kept factors").
+KEPT = ["Linear solver/Reuse factorization=true",
+        "Linear solver/Reuse iterations=20"]
 MODES = [
     ("backward Euler, Newton, barrier", "implicit euler", "barrier", []),
     ("linearized Euler, barrier", "linearized implicit euler", "barrier",
-     FLOOR),
+     FLOOR + KEPT),
     ("linearized Euler, penalty", "linearized implicit euler", "penalty",
-     FLOOR),
+     FLOOR + KEPT),
+    ("linearized Euler, penalty, step filter 0.9",
+     "linearized implicit euler", "penalty",
+     FLOOR + KEPT + ["Contact/Penalty step filter=0.9"]),
 ]
 
 
@@ -155,7 +164,8 @@ def main():
                f"scene's mode) as a checkpoint, then {args.push:g} s of push "
                f"at dt = {args.step:g} s per mode, Parallel/Threads = 1, no "
                "VTU; the scene's friction, the linearized modes with "
-               "Contact/Stiction displacement = 0.01 mm"],
+               "Contact/Stiction displacement = 0.01 mm and Linear "
+               "solver/Reuse factorization (20 iterations)"],
               list(dict.fromkeys(k for r in rows for k in r)))
     plot(rows, commit)
 

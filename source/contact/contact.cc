@@ -285,10 +285,17 @@ namespace coshell::contact
     };
   } // namespace
 
+  bool Contact::filters_steps() const
+  {
+    return parameters_.method == Method::barrier ||
+           (parameters_.method == Method::penalty &&
+            parameters_.penalty_step_filter > 0);
+  }
+
   double Contact::admissible_fraction(const model::ShellState &state,
                                       const Vector<double>    &correction) const
   {
-    if (parameters_.method != Method::barrier)
+    if (!filters_steps())
       return 1;
     const Stopwatch             watch(timing_.filter);
     const std::vector<Point<3>> x = shell_positions(state);
@@ -312,9 +319,8 @@ namespace coshell::contact
       std::vector<Tensor<1, 3>> dX(current_[o].size());
       for (unsigned int i = 0; i < dX.size(); ++i)
         dX[i] = target_[o][i] - current_[o][i];
-      const double fraction = parameters_.method == Method::barrier
-                                  ? filter_fraction({x, nullptr, o, &dX}, o)
-                                  : 1.0;
+      const double fraction =
+          filters_steps() ? filter_fraction({x, nullptr, o, &dX}, o) : 1.0;
       if (fraction >= 1)
         current_[o] = target_[o];
       else

@@ -411,14 +411,18 @@ namespace coshell::contact
   /// The fraction one listed pair allows. Only pairs whose swept boxes
   /// come within their offset reach additive_ccd(), which also stops a
   /// pair closing 90 % of a larger gap: the set it sees is then the same
-  /// whatever lists it came from.
+  /// whatever lists it came from. The penalty's filter keeps only a
+  /// fraction of the offset.
   double Contact::pair_filter_fraction(const Screen        &screen,
                                        double               listed,
                                        PrimitivePair        type,
                                        const Points4       &points,
                                        const Displacements &moves,
-                                       double               offset)
+                                       double               kept) const
   {
+    const double offset = parameters_.method == Method::penalty
+                              ? parameters_.penalty_step_filter * kept
+                              : kept;
     if (screen.skips_filter(listed, offset, moves) ||
         !swept_boxes_meet(type, points, moves, offset))
       return 1;

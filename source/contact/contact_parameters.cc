@@ -39,6 +39,16 @@ namespace coshell::contact
                       "Penalty: the penetration over which the penalty "
                       "stiffness ramps up from zero (C2 start), length "
                       "units. 0: h / 100.");
+    prm.declare_entry(
+        "Penalty step filter", "0", Patterns::Double(0, 1),
+        "Penalty: 0 (the default) lets a step carry a vertex through an "
+        "obstacle's surface or the shell's own, where the penalty, which "
+        "acts only on penetration, can no longer push it back; with "
+        "f > 0 every Newton correction and obstacle move is filtered by "
+        "continuous collision detection, as the barrier's are, to keep "
+        "each pair f times its offset (half the thicknesses) apart, so a "
+        "step may press into the half thickness but not through it "
+        "(dimensionless, 0 <= f < 1).");
     prm.declare_entry("Projected tangent", "true", Patterns::Bool(),
                       "Project each pair's Hessian onto the positive "
                       "semi-definite matrices (as IPC does) so that Newton "
@@ -124,6 +134,7 @@ namespace coshell::contact
     stiffening_gap_ratio     = prm.get_double("Stiffening gap ratio");
     penalty_stiffness        = prm.get_double("Penalty stiffness");
     penalty_smoothing        = prm.get_double("Penalty smoothing");
+    penalty_step_filter      = prm.get_double("Penalty step filter");
     project_tangent          = prm.get_bool("Projected tangent");
     project_tangent_on_retry = prm.get_bool("Projected tangent on retry");
     project_tangent_on_stall = prm.get_bool("Projected tangent on stall");
@@ -141,6 +152,15 @@ namespace coshell::contact
       prm.leave_subsection();
       throw std::runtime_error("Contact/Self contact friction coefficient: " +
                                value + " is negative; it must be >= 0");
+    }
+    if (penalty_step_filter >= 1)
+    {
+      const std::string value = prm.get("Penalty step filter");
+      prm.leave_subsection();
+      // At 1 the filter would stop every pair before the penalty acts,
+      // and a pushing obstacle could never advance.
+      throw std::runtime_error("Contact/Penalty step filter: " + value +
+                               " must be below 1 (0 turns the filter off)");
     }
     try
     {

@@ -40,6 +40,9 @@ namespace coshell::contact
     double penalty_stiffness = 0;
     /// Penalty: penetration over which the penalty's stiffness ramps up.
     double penalty_smoothing = 0;
+    /// Penalty: 0, or the fraction of each pair's offset that the step
+    /// filter keeps the pair apart (dimensionless, below 1).
+    double penalty_step_filter = 0;
     /// A step whose smallest gap falls below this fraction of the
     /// activation distance doubles the barrier stiffness (dimensionless).
     double stiffening_gap_ratio = 1e-3;
@@ -434,23 +437,26 @@ namespace coshell::contact
     /// The step filter: the largest fraction of the motion that keeps
     /// every pair (of obstacle 'only', or of all and self contact) apart.
     double filter_fraction(const Motion &motion, unsigned int only) const;
-    static double pair_filter_fraction(const Screen        &screen,
-                                       double               listed,
-                                       PrimitivePair        type,
-                                       const Points4       &points,
-                                       const Displacements &moves,
-                                       double               offset);
-    double        obstacle_filter_fraction(const Motion     &motion,
-                                           unsigned int      o,
-                                           const Candidates &c,
-                                           const Screen     &screen) const;
-    double        edge_filter_fraction(const Motion     &motion,
-                                       unsigned int      o,
-                                       const Candidates &c,
-                                       const Screen     &screen) const;
-    double        self_filter_fraction(const Motion     &motion,
-                                       const Candidates &c,
-                                       const Screen     &screen) const;
+    double pair_filter_fraction(const Screen        &screen,
+                                double               listed,
+                                PrimitivePair        type,
+                                const Points4       &points,
+                                const Displacements &moves,
+                                double               offset) const;
+    /// True when steps are filtered: the barrier, or the penalty with a
+    /// step filter.
+    bool   filters_steps() const;
+    double obstacle_filter_fraction(const Motion     &motion,
+                                    unsigned int      o,
+                                    const Candidates &c,
+                                    const Screen     &screen) const;
+    double edge_filter_fraction(const Motion     &motion,
+                                unsigned int      o,
+                                const Candidates &c,
+                                const Screen     &screen) const;
+    double self_filter_fraction(const Motion     &motion,
+                                const Candidates &c,
+                                const Screen     &screen) const;
     /// Boxes of obstacle o's triangles, swept by dX if given.
     Tree
     obstacle_triangle_tree(unsigned int                             o,
