@@ -9,23 +9,35 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace
 {
   using namespace dealii;
   using coshell::solvers::LinearSolver;
 
-  void configure(LinearSolver &solver, bool reuse)
+  /// UMFPACK with the given entries of "Linear solver" (the defaults
+  /// otherwise).
+  void
+  configure(LinearSolver                                           &solver,
+            const std::vector<std::pair<std::string, std::string>> &entries)
   {
     ParameterHandler prm;
     LinearSolver::declare_parameters(prm);
     prm.enter_subsection("Linear solver");
     prm.set("Method", "umfpack");
-    prm.set("Reuse factorization", reuse ? "true" : "false");
-    prm.set("Reuse iterations", "10");
-    prm.set("Tolerance", "1e-12");
+    for (const auto &[name, value] : entries)
+      prm.set(name, value);
     prm.leave_subsection();
     solver.parse_parameters(prm);
+  }
+
+  void configure(LinearSolver &solver, bool reuse)
+  {
+    configure(solver, {{"Reuse factorization", reuse ? "true" : "false"},
+                       {"Reuse iterations", "10"},
+                       {"Tolerance", "1e-12"}});
   }
 
   /// A non-symmetric tridiagonal matrix (a 1-D convection-diffusion
@@ -69,6 +81,17 @@ namespace
     direct.solve(x, b);
     return x;
   }
+
+  /// |x - the direct solve's answer| <= tolerance |x| (max norms).
+  void expect_direct_answer(const SparseMatrix<double> &matrix,
+                            const Vector<double>       &b,
+                            const Vector<double>       &x,
+                            double                      tolerance)
+  {
+    Vector<double> error = direct_solution(matrix, b);
+    error -= x;
+    EXPECT_LT(error.linfty_norm(), tolerance * x.linfty_norm());
+  }
 } // namespace
 
 TEST(LinearSolverReuse, NearbyMatrixIsSolvedWithTheKeptFactors)
@@ -95,12 +118,8 @@ TEST(LinearSolverReuse, NearbyMatrixIsSolvedWithTheKeptFactors)
   for (unsigned int i = 0; i < b.size(); ++i)
     b2[i] = std::cos(0.05 * i);
   solver.solve(x2, b2);
-  Vector<double> error = direct_solution(nearby, b);
-  error -= x;
-  EXPECT_LT(error.linfty_norm(), 1e-9 * x.linfty_norm());
-  error = direct_solution(nearby, b2);
-  error -= x2;
-  EXPECT_LT(error.linfty_norm(), 1e-9 * x2.linfty_norm());
+  expect_direct_answer(nearby, b, x, 1e-9);
+  expect_direct_answer(nearby, b2, x2, 1e-9);
 }
 
 TEST(LinearSolverReuse, FarMatrixIsFactorizedAfterAll)
@@ -119,9 +138,7 @@ TEST(LinearSolverReuse, FarMatrixIsFactorizedAfterAll)
   solver.solve(x, b);
   EXPECT_EQ(solver.factorizations(), 2u);
   EXPECT_EQ(solver.reused_factor_solves(), 0u);
-  Vector<double> error = direct_solution(far, b);
-  error -= x;
-  EXPECT_LT(error.linfty_norm(), 1e-12 * x.linfty_norm());
+  expect_direct_answer(far, b, x, 1e-12);
 }
 
 TEST(LinearSolverReuse, OffByDefault)
@@ -129,13 +146,8 @@ TEST(LinearSolverReuse, OffByDefault)
   Tridiagonal    system(50);
   Vector<double> b(50), x(50);
   b = 1.0;
-  LinearSolver     solver;
-  ParameterHandler prm;
-  LinearSolver::declare_parameters(prm);
-  prm.enter_subsection("Linear solver");
-  prm.set("Method", "umfpack");
-  prm.leave_subsection();
-  solver.parse_parameters(prm);
+  LinearSolver solver;
+  configure(solver, {});
   solver.factorize(system.set(0.1), false);
   solver.solve(x, b);
   solver.factorize(system.set(0.1001), false);
