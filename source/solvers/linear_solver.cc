@@ -179,6 +179,10 @@ namespace coshell::solvers
       try
       {
         backend_->cholmod.factorize(matrix);
+        // The UMFPACK factors kept from before belong to another sequence
+        // of matrices: the next UMFPACK request factorizes afresh.
+        factors_worn_out_ = true;
+        unfactorized_     = nullptr;
         return;
       }
       catch (const std::runtime_error &)

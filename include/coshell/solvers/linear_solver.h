@@ -27,8 +27,10 @@ namespace coshell::solvers
     /// 'symmetric' = false makes cholmod fall back to umfpack.
     void factorize(const dealii::SparseMatrix<double> &matrix,
                    bool                                symmetric = true);
-    /// Solves with the last factorized matrix. Throws std::runtime_error if
-    /// an iterative method does not converge.
+    /// Solves with the last matrix given to factorize(). With Reuse
+    /// factorization that matrix may not be factorized yet: it is then read
+    /// here, so it must be unchanged and alive until the last solve().
+    /// Throws std::runtime_error if an iterative method does not converge.
     void solve(dealii::Vector<double> &x, const dealii::Vector<double> &b);
 
     /// True when the method can use the near-null space (cg-amg with
