@@ -25,10 +25,17 @@ def arc(centre, radius, start, end, n):
                (-math.sin(angle), math.cos(angle)), ds)
 
 
+def arc_centre_x(a, radius):
+    """x of the centre of an arc of this centre-line radius whose
+    farthest point, on the x axis, puts the haptic's outer edge at
+    overall_diameter / 2 (lens.geo's C-loop and modified-L arm)."""
+    return a.overall_diameter / 2 - a.haptic_width / 2 - radius
+
+
 def c_loop(a, n):
     """The C-loop's centre line: the arc of radius R about (rho, 0) from
     the optic rim to tip_sweep past its farthest point."""
-    rho = a.overall_diameter / 2 - a.haptic_width / 2 - a.haptic_radius
+    rho = arc_centre_x(a, a.haptic_radius)
     R = a.haptic_radius
     root = -math.acos((a.optic_radius ** 2 - rho ** 2 - R ** 2) / (2 * R * rho))
     return list(arc((rho, 0), R, root, math.radians(a.tip_sweep), n))
@@ -39,7 +46,7 @@ def modified_l(a, n):
     leg from the optic rim, the knee (radius knee_radius, knee_angle) and
     the arm (radius arm_radius about (arm_centre, 0), from arm_start to
     tip_sweep), each tangent to the next."""
-    arm_centre = a.overall_diameter / 2 - a.haptic_width / 2 - a.arm_radius
+    arm_centre = arc_centre_x(a, a.arm_radius)
     beta = math.radians(a.arm_start)
     knee = (arm_centre + (a.arm_radius - a.knee_radius) * math.cos(beta),
             (a.arm_radius - a.knee_radius) * math.sin(beta))
@@ -60,13 +67,8 @@ def modified_l(a, n):
 
 def tip_point(a):
     """The centre of the haptic's square tip (the end of its centre line)."""
-    if a.haptic_type == 0:
-        centre = a.overall_diameter / 2 - a.haptic_width / 2 - a.haptic_radius
-        radius = a.haptic_radius
-    else:
-        centre = a.overall_diameter / 2 - a.haptic_width / 2 - a.arm_radius
-        radius = a.arm_radius
-    tip = math.radians(a.tip_sweep)
+    radius = a.haptic_radius if a.haptic_type == 0 else a.arm_radius
+    centre, tip = arc_centre_x(a, radius), math.radians(a.tip_sweep)
     return (centre + radius * math.cos(tip), radius * math.sin(tip))
 
 
