@@ -128,6 +128,20 @@ def redraw(methods):
     plot(rows, methods, os.path.join(OUT_DIR, "mpi_scaling.png"), stamp)
 
 
+def earlier_rows(path):
+    """The rows of an earlier mpi_largest.csv, each with the commit of the
+    binary that ran it (older files name one commit in their header)."""
+    with open(path) as f:
+        lines = f.readlines()
+    named = [l.split(":", 1)[1].strip() for l in lines
+             if l.startswith("# commit:")]
+    rows = list(csv.DictReader(l for l in lines if not l.startswith("#")))
+    for row in rows:
+        if not row.get("commit"):
+            row["commit"] = named[0] if named else "unknown"
+    return rows
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--coshell", required=True)
@@ -157,12 +171,11 @@ def main():
                       args.scratch)
             if row is None:
                 break
-            rows.append(row)
+            rows.append(dict(row, commit=commit))
         path = os.path.join(OUT_DIR, "mpi_largest.csv")
         if os.path.exists(path):  # append to the earlier runs
-            with open(path) as f:
-                rows = [r for r in csv.DictReader(
-                    l for l in f if not l.startswith("#"))] + rows
+            rows = earlier_rows(path) + rows
+        header[1] = "commit: see the commit column"
         write_csv(path, rows, header)
         return
     rows = [run(args.coshell, args.size, method, ranks, threads, args.scratch)

@@ -166,8 +166,9 @@ namespace coshell::solvers
     return seconds_;
   }
 
-  void LinearSolver::factorize(const SparseMatrix<double> &matrix,
-                               bool                        symmetric)
+  void LinearSolver::factorize(const SparseMatrix<double>  &matrix,
+                               bool                         symmetric,
+                               const std::function<void()> &release_matrix)
   {
     const ScopeTimer timer{seconds_};
     backend_->using_cholmod = method_ == "cholmod" && symmetric;
@@ -225,6 +226,8 @@ namespace coshell::solvers
     backend_->trilinos_matrix->reinit(backend_->owned_rows,
                                       backend_->owned_rows, matrix,
                                       backend_->communicator, 0.0);
+    if (release_matrix)
+      release_matrix();
     if (is_amesos())
     {
       backend_->trilinos_direct =
@@ -257,15 +260,18 @@ namespace coshell::solvers
       parameters.set("null space: type", "pre-computed");
       parameters.set("null space: dimension",
                      static_cast<int>(backend_->n_null_space_modes));
-      // ML reads the rows of this rank, mode after mode.
+      // ML reads the rows of this rank, mode after mode; on one rank those
+      // are all rows, and a copy would only cost 48 bytes per DoF.
+      auto      &all   = backend_->null_space_values;
       auto      &owned = backend_->owned_null_space_values;
-      const auto n =
-          backend_->null_space_values.size() / backend_->n_null_space_modes;
+      const auto n     = all.size() / backend_->n_null_space_modes;
       owned.clear();
-      for (unsigned int mode = 0; mode < backend_->n_null_space_modes; ++mode)
-        for (const auto row : backend_->owned_rows)
-          owned.push_back(backend_->null_space_values[mode * n + row]);
-      parameters.set("null space: vectors", owned.data());
+      if (backend_->owned_rows.n_elements() != n)
+        for (unsigned int mode = 0; mode < backend_->n_null_space_modes; ++mode)
+          for (const auto row : backend_->owned_rows)
+            owned.push_back(all[mode * n + row]);
+      parameters.set("null space: vectors",
+                     owned.empty() ? all.data() : owned.data());
     }
     backend_->amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
     backend_->amg->initialize(*backend_->trilinos_matrix, parameters);

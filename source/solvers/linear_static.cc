@@ -13,13 +13,20 @@ namespace coshell::solvers
       : model_(model), constraints_(constraints)
   {
     model::check_supports(model_, constraints_);
+    allocate_stiffness();
+    load_.reinit(model_.n_dofs());
+  }
+
+  void LinearStatic::allocate_stiffness()
+  {
     model_.make_sparsity(constraints_, sparsity_);
     stiffness_.reinit(sparsity_);
-    load_.reinit(model_.n_dofs());
   }
 
   void LinearStatic::assemble(const model::Loads &loads, std::ostream &log)
   {
+    if (stiffness_.empty()) // released by the last solve()
+      allocate_stiffness();
     model_.assemble_stiffness(constraints_, stiffness_);
     load_ = 0;
     loads.assemble(model_, load_, log);
@@ -52,15 +59,24 @@ namespace coshell::solvers
       }
   }
 
-  Vector<double> LinearStatic::solve(LinearSolver &solver) const
+  Vector<double> LinearStatic::solve(LinearSolver &solver)
   {
+    if (stiffness_.empty())
+      throw std::logic_error("LinearStatic::solve() needs assemble() first");
     Vector<double> solution(model_.n_dofs());
     if (solver.uses_near_null_space())
     {
       const auto modes = model::rigid_body_modes(model_);
       solver.set_near_null_space({modes.begin(), modes.end()});
     }
-    solver.factorize(stiffness_);
+    // Nothing reads K after the solve: at millions of DoFs, freeing it
+    // before the AMG set-up is what lets the largest problems fit.
+    solver.factorize(stiffness_, true,
+                     [this]
+                     {
+                       stiffness_.clear();
+                       sparsity_.reinit(0, 0, 0);
+                     });
     solver.solve(solution, load_);
     constraints_.distribute(solution);
     for (const double value : solution)

@@ -154,3 +154,46 @@ TEST(LinearSolverReuse, OffByDefault)
   solver.solve(x, b);
   EXPECT_EQ(solver.reused_factor_solves(), 0u);
 }
+
+// The Trilinos methods copy the matrix; once they hold the copy the caller
+// may free its own (LinearStatic does, at millions of DoFs). The solution
+// must not depend on the freed matrix, and methods that keep reading the
+// caller's matrix (UMFPACK with kept factors) must never ask.
+TEST(LinearSolverRelease, TrilinosMethodsLetTheCallerFreeItsMatrix)
+{
+  for (const std::string method : {"amesos-klu", "gmres-amg"})
+  {
+    Tridiagonal    system(60);
+    Vector<double> b(60), x(60);
+    b                             = 1.0;
+    const Vector<double> expected = direct_solution(system.set(0.2), b);
+    LinearSolver         solver;
+    configure(solver, {{"Method", method}, {"Tolerance", "1e-12"}});
+    bool released = false;
+    solver.factorize(system.matrix, false,
+                     [&]
+                     {
+                       released = true;
+                       system.matrix.clear();
+                     });
+    solver.solve(x, b);
+    EXPECT_TRUE(released) << method;
+    x -= expected;
+    EXPECT_LT(x.linfty_norm(), 1e-9 * expected.linfty_norm()) << method;
+  }
+}
+
+TEST(LinearSolverRelease, MethodsThatReadTheMatrixLaterNeverRelease)
+{
+  Tridiagonal    system(60);
+  Vector<double> b(60), x(60);
+  b = 1.0;
+  LinearSolver solver;
+  configure(solver, true); // UMFPACK with kept factors
+  bool released = false;
+  for (const double convection : {0.2, 0.201})
+    solver.factorize(system.set(convection), false, [&] { released = true; });
+  solver.solve(x, b);
+  EXPECT_FALSE(released);
+  expect_direct_answer(system.matrix, b, x, 1e-9);
+}

@@ -26,7 +26,9 @@ namespace coshell::solvers
     void assemble(const model::Loads &loads, std::ostream &log);
 
     /// Factorizes and solves; returns the displacement/rotation vector.
-    dealii::Vector<double> solve(LinearSolver &solver) const;
+    /// K is released once the solver holds its own copy (the Trilinos
+    /// methods); the next assemble() allocates it again.
+    dealii::Vector<double> solve(LinearSolver &solver);
 
     unsigned int n_inactive_dofs() const;
 
@@ -38,6 +40,7 @@ namespace coshell::solvers
     dealii::Vector<double>                   load_;
     unsigned int                             n_inactive_dofs_ = 0;
 
+    void allocate_stiffness();
     void regularize_inactive_dofs();
   };
 } // namespace coshell::solvers
