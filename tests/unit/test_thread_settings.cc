@@ -1,0 +1,48 @@
+#include <coshell/solvers/parallel_environment.h>
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <gtest/gtest.h>
+#include <omp.h>
+
+#include <string>
+#include <thread>
+
+namespace
+{
+  void set_threads(const std::string &threads)
+  {
+    dealii::ParameterHandler prm;
+    coshell::solvers::ThreadSettings::declare_parameters(prm);
+    prm.enter_subsection("Parallel");
+    prm.set("Threads", threads);
+    prm.leave_subsection();
+    coshell::solvers::ThreadSettings().parse_parameters(prm);
+  }
+
+  /// The team size of a region that names its own thread count, as
+  /// CHOLMOD's supernodal factorization does (num_threads(4)), which
+  /// omp_set_num_threads alone does not bound.
+  int team_of_region_asking_for_four()
+  {
+    int team = 0;
+#pragma omp parallel num_threads(4)
+    {
+#pragma omp single
+      team = omp_get_num_threads();
+    }
+    return team;
+  }
+} // namespace
+
+TEST(ThreadSettings, OneThreadKeepsRegionsThatAskForMoreOnTheCallingThread)
+{
+  set_threads("1");
+  EXPECT_EQ(team_of_region_asking_for_four(), 1);
+  EXPECT_EQ(omp_get_max_threads(), 1);
+  set_threads("0");
+  // Several threads: a region may use them, but never more than the cores.
+  const int team = team_of_region_asking_for_four();
+  EXPECT_GE(team, 1);
+  EXPECT_LE(team, static_cast<int>(std::thread::hardware_concurrency()));
+}
