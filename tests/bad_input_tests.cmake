@@ -59,3 +59,10 @@ coshell_bad_input_test(unknown_command_line_option "unexpected argument '--frobn
   ${plate} --frobnicate)
 coshell_bad_input_test(hinge_only "1 rigid-body motion.s. free.*translation z.*rotation y"
   ${plate} --set "Boundary conditions/Conditions=0: fixed ux uy uz")
+
+# An in-plane load with the membrane switched off acts on DoFs no element
+# stiffens: the linear solve refuses it, naming the DoF.
+coshell_bad_input_test(load_on_unstiffened_dof
+  "a load acts on DoF 12, which no element stiffens"
+  ${plate} --set "Element/Membrane element=off"
+  --set "Loads/Point forces=0.5 0.5 0 : 1 0 0" --set "Mesh/Refinement levels=1")

@@ -99,3 +99,11 @@ coshell_mpi_bad_input_test(mpi_mesh_too_small
   ${COSHELL_PRM}/plates/clamped_square_pressure.prm
   --set "Mesh/Subdivisions x=1" --set "Mesh/Subdivisions y=1"
   --set "Mesh/Refinement levels=0" --set "Linear solver/Method=amesos-mumps")
+# The same refusal when the rows are distributed: every rank stops, the one
+# holding the DoF names it.
+coshell_mpi_bad_input_test(mpi_load_on_unstiffened_dof
+  "a load acts on DoF 12, which no element stiffens" 2
+  ${COSHELL_PRM}/plates/clamped_square_pressure.prm
+  --set "Element/Membrane element=off"
+  --set "Loads/Point forces=0.5 0.5 0 : 1 0 0" --set "Mesh/Refinement levels=1"
+  --set "Linear solver/Method=amesos-mumps")

@@ -263,7 +263,8 @@ namespace coshell::driver
     io::LevelResult                 result;
     auto                            phase = std::chrono::steady_clock::now();
     const AffineConstraints<double> constraints = support_constraints(model);
-    solvers::LinearStatic           analysis(model, constraints);
+    solvers::LinearStatic           analysis(model, constraints,
+                                             linear_solver_.distributed_rows());
     result.wall_time_s.setup = seconds_since(phase);
 
     phase = std::chrono::steady_clock::now();

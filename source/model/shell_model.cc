@@ -350,9 +350,10 @@ namespace coshell::model
     pattern.copy_from(dsp);
   }
 
+  template<typename Matrix>
   void
-  ShellModel::assemble_stiffness(const AffineConstraints<double> &constraints,
-                                 SparseMatrix<double>            &matrix) const
+  ShellModel::assemble_owned_cells(const AffineConstraints<double> &constraints,
+                                   Matrix &matrix) const
   {
     matrix = 0;
     for_each_cell(
@@ -368,7 +369,48 @@ namespace coshell::model
                                                  contribution.dofs, matrix);
         },
         CellRange::owned);
+  }
+
+  void
+  ShellModel::assemble_stiffness(const AffineConstraints<double> &constraints,
+                                 SparseMatrix<double>            &matrix) const
+  {
+    assemble_owned_cells(constraints, matrix);
     solvers::sum_over_ranks(matrix);
+  }
+
+  void
+  ShellModel::assemble_stiffness(const AffineConstraints<double> &constraints,
+                                 TrilinosWrappers::SparseMatrix  &matrix) const
+  {
+    assemble_owned_cells(constraints, matrix);
+    matrix.compress(VectorOperation::add);
+  }
+
+  void ShellModel::make_distributed_sparsity(
+      const AffineConstraints<double>   &constraints,
+      const IndexSet                    &owned_rows,
+      TrilinosWrappers::SparsityPattern &pattern) const
+  {
+    const auto                           rank = solvers::this_rank();
+    IndexSet                             rows_of_my_cells(n_dofs());
+    std::vector<types::global_dof_index> dofs(element::shell_dofs);
+    for (const auto &cell : dof_handler_.active_cell_iterators())
+      if (cell->subdomain_id() == rank)
+      {
+        cell->get_dof_indices(dofs);
+        rows_of_my_cells.add_indices(dofs.begin(), dofs.end());
+      }
+    // Constraints tie a DoF of my cells to others: their rows are written.
+    for (const auto &line : constraints.get_lines())
+      if (rows_of_my_cells.is_element(line.index))
+        for (const auto &entry : line.entries)
+          rows_of_my_cells.add_index(entry.first);
+    rows_of_my_cells.compress();
+    pattern.reinit(owned_rows, owned_rows, rows_of_my_cells, MPI_COMM_WORLD);
+    DoFTools::make_sparsity_pattern(dof_handler_, pattern, constraints, false,
+                                    rank);
+    pattern.compress();
   }
 
   element::ShellDisplacements

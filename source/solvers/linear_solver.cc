@@ -228,6 +228,33 @@ namespace coshell::solvers
                                       backend_->communicator, 0.0);
     if (release_matrix)
       release_matrix();
+    set_up_trilinos_solver();
+  }
+
+  void LinearSolver::factorize(TrilinosWrappers::SparseMatrix &&matrix)
+  {
+    const ScopeTimer timer{seconds_};
+    AssertThrow(distributed() && matrix.locally_owned_range_indices() ==
+                                     backend_->owned_rows,
+                ExcMessage("a distributed matrix needs the rows of "
+                           "set_row_partition()"));
+    backend_->using_cholmod = false;
+    unfactorized_           = nullptr;
+    backend_->trilinos_direct.reset();
+    backend_->amg.reset();
+    backend_->trilinos_matrix =
+        std::make_unique<TrilinosWrappers::SparseMatrix>(std::move(matrix));
+    set_up_trilinos_solver();
+  }
+
+  const IndexSet &LinearSolver::distributed_rows() const
+  {
+    static const IndexSet none;
+    return distributed() ? backend_->owned_rows : none;
+  }
+
+  void LinearSolver::set_up_trilinos_solver()
+  {
     if (is_amesos())
     {
       backend_->trilinos_direct =

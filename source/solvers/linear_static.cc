@@ -1,5 +1,6 @@
 #include <coshell/model/rigid_body_modes.h>
 #include <coshell/solvers/linear_static.h>
+#include <coshell/solvers/parallel_environment.h>
 
 #include <cmath>
 #include <stdexcept>
@@ -9,59 +10,107 @@ namespace coshell::solvers
   using namespace dealii;
 
   LinearStatic::LinearStatic(const model::ShellModel         &model,
-                             const AffineConstraints<double> &constraints)
-      : model_(model), constraints_(constraints)
+                             const AffineConstraints<double> &constraints,
+                             const IndexSet                  &distributed_rows)
+      : model_(model), constraints_(constraints),
+        distributed_rows_(distributed_rows)
   {
     model::check_supports(model_, constraints_);
     allocate_stiffness();
     load_.reinit(model_.n_dofs());
   }
 
+  bool LinearStatic::distributed_stiffness() const
+  {
+    return distributed_rows_.size() > 0;
+  }
+
+  bool LinearStatic::stiffness_allocated() const
+  {
+    return distributed_stiffness() ? distributed_stiffness_ != nullptr
+                                   : !stiffness_.empty();
+  }
+
   void LinearStatic::allocate_stiffness()
   {
+    if (distributed_stiffness())
+    {
+      distributed_pattern_ =
+          std::make_unique<TrilinosWrappers::SparsityPattern>();
+      model_.make_distributed_sparsity(constraints_, distributed_rows_,
+                                       *distributed_pattern_);
+      distributed_stiffness_ =
+          std::make_unique<TrilinosWrappers::SparseMatrix>();
+      distributed_stiffness_->reinit(*distributed_pattern_);
+      return;
+    }
     model_.make_sparsity(constraints_, sparsity_);
     stiffness_.reinit(sparsity_);
   }
 
   void LinearStatic::assemble(const model::Loads &loads, std::ostream &log)
   {
-    if (stiffness_.empty()) // released by the last solve()
+    if (!stiffness_allocated()) // released by the last solve()
       allocate_stiffness();
-    model_.assemble_stiffness(constraints_, stiffness_);
     load_ = 0;
     loads.assemble(model_, load_, log);
     constraints_.condense(load_);
-    regularize_inactive_dofs();
+    if (distributed_stiffness())
+    {
+      model_.assemble_stiffness(constraints_, *distributed_stiffness_);
+      regularize_inactive_dofs(*distributed_stiffness_, distributed_rows_);
+      distributed_stiffness_->compress(VectorOperation::insert);
+    }
+    else
+    {
+      model_.assemble_stiffness(constraints_, stiffness_);
+      regularize_inactive_dofs(stiffness_, complete_index_set(stiffness_.m()));
+    }
   }
 
-  void LinearStatic::regularize_inactive_dofs()
+  template<typename Matrix>
+  void LinearStatic::regularize_inactive_dofs(Matrix         &matrix,
+                                              const IndexSet &rows)
   {
-    double       diagonal_sum = 0;
-    unsigned int n_active     = 0;
-    for (unsigned int i = 0; i < stiffness_.m(); ++i)
-      if (stiffness_.diag_element(i) != 0)
+    // [sum of |diagonal| over stiffened rows, their number, the first
+    // unstiffened row that carries a load + 1], summed over the ranks
+    // (each row lives on one rank); a sum of first rows is still non-zero.
+    Vector<double> totals(3);
+    for (const auto i : rows)
+      if (const double diagonal = matrix.diag_element(i); diagonal != 0)
       {
-        diagonal_sum += std::abs(stiffness_.diag_element(i));
-        ++n_active;
+        totals[0] += std::abs(diagonal);
+        totals[1] += 1;
       }
-    const double typical = n_active > 0 ? diagonal_sum / n_active : 1.0;
+      else if (load_[i] != 0 && totals[2] == 0)
+        totals[2] = i + 1.0;
+    const double loaded_row = totals[2];
+    sum_over_ranks(totals);
+    if (totals[2] != 0)
+      throw std::runtime_error(
+          "a load acts on " +
+          (loaded_row != 0
+               ? "DoF " + std::to_string(static_cast<long>(loaded_row) - 1)
+               : std::string("a DoF on another rank")) +
+          ", which no element stiffens (is the membrane or bending part "
+          "switched off?)");
+    const double typical = totals[1] > 0 ? totals[0] / totals[1] : 1.0;
     n_inactive_dofs_     = 0;
-    for (unsigned int i = 0; i < stiffness_.m(); ++i)
-      if (stiffness_.diag_element(i) == 0)
+    for (const auto i : rows)
+      if (matrix.diag_element(i) == 0)
       {
-        if (load_[i] != 0)
-          throw std::runtime_error(
-              "a load acts on DoF " + std::to_string(i) +
-              ", which no element stiffens (is the membrane or bending part "
-              "switched off?)");
-        stiffness_.diag_element(i) = typical;
+        matrix.set(i, i, typical);
         ++n_inactive_dofs_;
       }
+    Vector<double> inactive(1);
+    inactive[0] = n_inactive_dofs_;
+    sum_over_ranks(inactive);
+    n_inactive_dofs_ = static_cast<unsigned int>(inactive[0]);
   }
 
   Vector<double> LinearStatic::solve(LinearSolver &solver)
   {
-    if (stiffness_.empty())
+    if (!stiffness_allocated())
       throw std::logic_error("LinearStatic::solve() needs assemble() first");
     Vector<double> solution(model_.n_dofs());
     if (solver.uses_near_null_space())
@@ -69,14 +118,21 @@ namespace coshell::solvers
       const auto modes = model::rigid_body_modes(model_);
       solver.set_near_null_space({modes.begin(), modes.end()});
     }
-    // Nothing reads K after the solve: at millions of DoFs, freeing it
-    // before the AMG set-up is what lets the largest problems fit.
-    solver.factorize(stiffness_, true,
-                     [this]
-                     {
-                       stiffness_.clear();
-                       sparsity_.reinit(0, 0, 0);
-                     });
+    if (distributed_stiffness())
+    {
+      solver.factorize(std::move(*distributed_stiffness_));
+      distributed_stiffness_.reset();
+      distributed_pattern_.reset();
+    }
+    else
+      // Nothing reads K after the solve: at millions of DoFs, freeing it
+      // before the AMG set-up is what lets the largest problems fit.
+      solver.factorize(stiffness_, true,
+                       [this]
+                       {
+                         stiffness_.clear();
+                         sparsity_.reinit(0, 0, 0);
+                       });
     solver.solve(solution, load_);
     constraints_.distribute(solution);
     for (const double value : solution)

@@ -9,6 +9,8 @@
 #include <deal.II/fe/fe_system.h>
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_sparsity_pattern.h>
 #include <deal.II/lac/vector.h>
 
 #include <array>
@@ -103,10 +105,24 @@ namespace coshell::model
         const dealii::AffineConstraints<double>        &constraints,
         dealii::SparsityPattern                        &pattern,
         const std::vector<std::array<unsigned int, 2>> &coupled = {}) const;
-    /// Assembles the linear stiffness (multithreaded with WorkStream).
+    /// Assembles the linear stiffness (multithreaded with WorkStream). On
+    /// several ranks each assembles its cells and the ranks sum the whole
+    /// matrix, which every rank then holds.
     void
     assemble_stiffness(const dealii::AffineConstraints<double> &constraints,
                        dealii::SparseMatrix<double>            &matrix) const;
+
+    /// On several ranks: the pattern of the rows 'owned_rows' of this rank,
+    /// which may also write to the rows of its cells that other ranks own.
+    void make_distributed_sparsity(
+        const dealii::AffineConstraints<double>   &constraints,
+        const dealii::IndexSet                    &owned_rows,
+        dealii::TrilinosWrappers::SparsityPattern &pattern) const;
+    /// Assembles this rank's cells into a matrix on that pattern; entries
+    /// of rows owned elsewhere travel to their rank once, in compress().
+    void
+    assemble_stiffness(const dealii::AffineConstraints<double> &constraints,
+                       dealii::TrilinosWrappers::SparseMatrix  &matrix) const;
 
     /// The 18 element DoF values of a cell, in kernel order.
     element::ShellDisplacements
@@ -118,6 +134,10 @@ namespace coshell::model
     resultants(const dealii::Vector<double> &solution) const;
 
   private:
+    template<typename Matrix>
+    void assemble_owned_cells(const dealii::AffineConstraints<double> &,
+                              Matrix &matrix) const;
+
     const mesh::Surface                      &surface_;
     ElementParameters                         element_;
     dealii::FESystem<2, 3>                    fe_;

@@ -3,6 +3,7 @@
 #include <deal.II/base/index_set.h>
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 #include <deal.II/lac/vector.h>
 
@@ -35,6 +36,14 @@ namespace coshell::solvers
     void factorize(const dealii::SparseMatrix<double> &matrix,
                    bool                                symmetric      = true,
                    const std::function<void()>        &release_matrix = {});
+    /// On several ranks: takes over a Trilinos matrix whose rows are
+    /// distributed_rows(), assembled by the ranks together, and factorizes
+    /// it or sets up its preconditioner; no rank holds the whole matrix.
+    void factorize(dealii::TrilinosWrappers::SparseMatrix &&matrix);
+    /// The rows this rank holds under mpirun (see set_row_partition); empty
+    /// on one rank, where the solvers take complete deal.II matrices.
+    const dealii::IndexSet &distributed_rows() const;
+
     /// Solves with the last matrix given to factorize(). With Reuse
     /// factorization that matrix may not be factorized yet: it is then read
     /// here, so it must be unchanged and alive until the last solve().
@@ -111,6 +120,7 @@ namespace coshell::solvers
     struct Backend;
     std::unique_ptr<Backend> backend_;
 
+    void        set_up_trilinos_solver();
     void        initialize_amg();
     bool        solve_with_kept_factors(dealii::Vector<double>       &x,
                                         const dealii::Vector<double> &b);

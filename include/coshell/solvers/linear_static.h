@@ -9,6 +9,7 @@
 #include <deal.II/lac/sparsity_pattern.h>
 #include <deal.II/lac/vector.h>
 
+#include <memory>
 #include <ostream>
 
 namespace coshell::solvers
@@ -17,8 +18,13 @@ namespace coshell::solvers
   class LinearStatic
   {
   public:
+    /// With 'distributed_rows' (LinearSolver::distributed_rows() under
+    /// mpirun) K is a Trilinos matrix of which this rank assembles its
+    /// cells and holds those rows; otherwise a deal.II matrix, complete on
+    /// every rank.
     LinearStatic(const model::ShellModel                 &model,
-                 const dealii::AffineConstraints<double> &constraints);
+                 const dealii::AffineConstraints<double> &constraints,
+                 const dealii::IndexSet &distributed_rows = {});
 
     /// Assembles K and f. DoFs that no element stiffens (the in-plane DoFs
     /// of a flat plate with the membrane off) get a unit-scaled diagonal so
@@ -35,12 +41,21 @@ namespace coshell::solvers
   private:
     const model::ShellModel                 &model_;
     const dealii::AffineConstraints<double> &constraints_;
+    dealii::IndexSet                         distributed_rows_;
     dealii::SparsityPattern                  sparsity_;
     dealii::SparseMatrix<double>             stiffness_;
-    dealii::Vector<double>                   load_;
-    unsigned int                             n_inactive_dofs_ = 0;
+    /// Under mpirun only: a Trilinos object starts talking to MPI when built.
+    std::unique_ptr<dealii::TrilinosWrappers::SparsityPattern>
+        distributed_pattern_;
+    std::unique_ptr<dealii::TrilinosWrappers::SparseMatrix>
+                           distributed_stiffness_;
+    dealii::Vector<double> load_;
+    unsigned int           n_inactive_dofs_ = 0;
 
+    bool distributed_stiffness() const;
+    bool stiffness_allocated() const;
     void allocate_stiffness();
-    void regularize_inactive_dofs();
+    template<typename Matrix>
+    void regularize_inactive_dofs(Matrix &matrix, const dealii::IndexSet &rows);
   };
 } // namespace coshell::solvers
