@@ -7,6 +7,7 @@
 #include <deal.II/fe/fe_simplex_p.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 
+#include <algorithm>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
@@ -402,10 +403,14 @@ namespace coshell::model
         rows_of_my_cells.add_indices(dofs.begin(), dofs.end());
       }
     // Constraints tie a DoF of my cells to others: their rows are written.
+    rows_of_my_cells.compress();
+    std::vector<types::global_dof_index> constrained_to;
     for (const auto &line : constraints.get_lines())
       if (rows_of_my_cells.is_element(line.index))
         for (const auto &entry : line.entries)
-          rows_of_my_cells.add_index(entry.first);
+          constrained_to.push_back(entry.first);
+    std::sort(constrained_to.begin(), constrained_to.end());
+    rows_of_my_cells.add_indices(constrained_to.begin(), constrained_to.end());
     rows_of_my_cells.compress();
     pattern.reinit(owned_rows, owned_rows, rows_of_my_cells, MPI_COMM_WORLD);
     DoFTools::make_sparsity_pattern(dof_handler_, pattern, constraints, false,

@@ -293,12 +293,13 @@ namespace coshell::solvers
       auto      &owned = backend_->owned_null_space_values;
       const auto n     = all.size() / backend_->n_null_space_modes;
       owned.clear();
-      if (backend_->owned_rows.n_elements() != n)
+      const bool all_rows = backend_->owned_rows.n_elements() == n;
+      if (!all_rows)
         for (unsigned int mode = 0; mode < backend_->n_null_space_modes; ++mode)
           for (const auto row : backend_->owned_rows)
             owned.push_back(all[mode * n + row]);
       parameters.set("null space: vectors",
-                     owned.empty() ? all.data() : owned.data());
+                     all_rows ? all.data() : owned.data());
     }
     backend_->amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
     backend_->amg->initialize(*backend_->trilinos_matrix, parameters);

@@ -72,28 +72,27 @@ namespace coshell::solvers
   void LinearStatic::regularize_inactive_dofs(Matrix         &matrix,
                                               const IndexSet &rows)
   {
-    // [sum of |diagonal| over stiffened rows, their number, the first
-    // unstiffened row that carries a load + 1], summed over the ranks
-    // (each row lives on one rank); a sum of first rows is still non-zero.
-    Vector<double> totals(3);
+    // [sum of |diagonal| over stiffened rows, their number, then per rank
+    // the first unstiffened row that carries a load + 1], summed over the
+    // ranks (each row lives on one rank), so that every rank stops with the
+    // same message.
+    Vector<double> totals(2 + n_ranks());
+    double        &loaded_row = totals[2 + this_rank()];
     for (const auto i : rows)
       if (const double diagonal = matrix.diag_element(i); diagonal != 0)
       {
         totals[0] += std::abs(diagonal);
         totals[1] += 1;
       }
-      else if (load_[i] != 0 && totals[2] == 0)
-        totals[2] = i + 1.0;
-    const double loaded_row = totals[2];
+      else if (load_[i] != 0 && loaded_row == 0)
+        loaded_row = i + 1.0;
     sum_over_ranks(totals);
-    if (totals[2] != 0)
-      throw std::runtime_error(
-          "a load acts on " +
-          (loaded_row != 0
-               ? "DoF " + std::to_string(static_cast<long>(loaded_row) - 1)
-               : std::string("a DoF on another rank")) +
-          ", which no element stiffens (is the membrane or bending part "
-          "switched off?)");
+    for (unsigned int rank = 0; rank < n_ranks(); ++rank)
+      if (const double row = totals[2 + rank]; row != 0)
+        throw std::runtime_error(
+            "a load acts on DoF " + std::to_string(static_cast<long>(row) - 1) +
+            ", which no element stiffens (is the membrane or bending part "
+            "switched off?)");
     const double typical = totals[1] > 0 ? totals[0] / totals[1] : 1.0;
     n_inactive_dofs_     = 0;
     for (const auto i : rows)
@@ -120,9 +119,11 @@ namespace coshell::solvers
     }
     if (distributed_stiffness())
     {
-      solver.factorize(std::move(*distributed_stiffness_));
-      distributed_stiffness_.reset();
+      // Released before factorize(), so that a failed set-up leaves no
+      // moved-from matrix that looks assembled.
+      const auto stiffness = std::move(distributed_stiffness_);
       distributed_pattern_.reset();
+      solver.factorize(std::move(*stiffness));
     }
     else
       // Nothing reads K after the solve: at millions of DoFs, freeing it

@@ -187,9 +187,10 @@ namespace coshell::solvers
     // one thread those wake-ups and futex waits cost more than the
     // factorization (Sze's hemisphere with the symmetric tangent: 24 % of
     // the samples in the kernel's scheduler). With one thread no OpenMP
-    // region may be active (max-active-levels 0, a process-wide setting);
-    // with more, libgomp's dynamic adjustment caps a region at the idle
-    // cores.
+    // region may be active (max-active-levels 0); with 2 or 3, fewer than
+    // CHOLMOD's 4, libgomp's dynamic adjustment caps a region at the idle
+    // cores. Both are settings of the calling thread (GCC 12), the one the
+    // solvers run on.
     void limit_openmp_regions(unsigned int threads)
     {
       static const auto get_levels =
@@ -199,7 +200,7 @@ namespace coshell::solvers
               find_function<void(int)>("omp_set_max_active_levels"))
         set_levels(threads == 1 ? 0 : initial_levels);
       if (const auto set_dynamic = find_function<void(int)>("omp_set_dynamic"))
-        set_dynamic(threads > 1);
+        set_dynamic(threads > 1 && threads < 4);
     }
 
     void limit_library_threads(unsigned int threads)
