@@ -41,6 +41,16 @@ namespace coshell::solvers
     std::vector<double> null_space_values, owned_null_space_values;
     unsigned int        n_null_space_modes = 0;
 
+    /// The old solver still points to the old matrix (Amesos_Mumps reads
+    /// its communicator when destroyed): it goes first, then the matrix.
+    void replace_trilinos_matrix(
+        std::unique_ptr<TrilinosWrappers::SparseMatrix> matrix)
+    {
+      trilinos_direct.reset();
+      amg.reset();
+      trilinos_matrix = std::move(matrix);
+    }
+
     TrilinosWrappers::MPI::Vector to_trilinos(const Vector<double> &v) const
     {
       TrilinosWrappers::MPI::Vector result(owned_rows, communicator);
@@ -215,12 +225,8 @@ namespace coshell::solvers
       backend_->owned_rows   = complete_index_set(matrix.m());
       backend_->communicator = MPI_COMM_SELF;
     }
-    // The old solver still points to the old matrix (Amesos_Mumps reads
-    // its communicator when destroyed): release it first.
-    backend_->trilinos_direct.reset();
-    backend_->amg.reset();
-    backend_->trilinos_matrix =
-        std::make_unique<TrilinosWrappers::SparseMatrix>();
+    backend_->replace_trilinos_matrix(
+        std::make_unique<TrilinosWrappers::SparseMatrix>());
     // Drop nothing: mass terms in t/mm^3 are far below Trilinos' default
     // drop tolerance of 1e-13.
     backend_->trilinos_matrix->reinit(backend_->owned_rows,
@@ -240,10 +246,8 @@ namespace coshell::solvers
                            "set_row_partition()"));
     backend_->using_cholmod = false;
     unfactorized_           = nullptr;
-    backend_->trilinos_direct.reset();
-    backend_->amg.reset();
-    backend_->trilinos_matrix =
-        std::make_unique<TrilinosWrappers::SparseMatrix>(std::move(matrix));
+    backend_->replace_trilinos_matrix(
+        std::make_unique<TrilinosWrappers::SparseMatrix>(std::move(matrix)));
     set_up_trilinos_solver();
   }
 

@@ -35,13 +35,13 @@ namespace coshell::solvers
   {
     if (distributed_stiffness())
     {
-      distributed_pattern_ =
-          std::make_unique<TrilinosWrappers::SparsityPattern>();
+      // The matrix copies the graph: the pattern goes at once.
+      TrilinosWrappers::SparsityPattern pattern;
       model_.make_distributed_sparsity(constraints_, distributed_rows_,
-                                       *distributed_pattern_);
+                                       pattern);
       distributed_stiffness_ =
           std::make_unique<TrilinosWrappers::SparseMatrix>();
-      distributed_stiffness_->reinit(*distributed_pattern_);
+      distributed_stiffness_->reinit(pattern);
       return;
     }
     model_.make_sparsity(constraints_, sparsity_);
@@ -72,39 +72,37 @@ namespace coshell::solvers
   void LinearStatic::regularize_inactive_dofs(Matrix         &matrix,
                                               const IndexSet &rows)
   {
-    // [sum of |diagonal| over stiffened rows, their number, then per rank
-    // the first unstiffened row that carries a load + 1], summed over the
-    // ranks (each row lives on one rank), so that every rank stops with the
-    // same message.
-    Vector<double> totals(2 + n_ranks());
-    double        &loaded_row = totals[2 + this_rank()];
+    // [sum of |diagonal| over stiffened rows, their number, the number of
+    // unstiffened rows, then per rank the first unstiffened row that carries
+    // a load + 1], summed over the ranks (each row lives on one rank), so
+    // that every rank stops with the same message.
+    Vector<double> totals(3 + n_ranks());
+    double        &loaded_row = totals[3 + this_rank()];
     for (const auto i : rows)
       if (const double diagonal = matrix.diag_element(i); diagonal != 0)
       {
         totals[0] += std::abs(diagonal);
         totals[1] += 1;
       }
-      else if (load_[i] != 0 && loaded_row == 0)
-        loaded_row = i + 1.0;
+      else
+      {
+        totals[2] += 1;
+        if (load_[i] != 0 && loaded_row == 0)
+          loaded_row = i + 1.0;
+      }
     sum_over_ranks(totals);
     for (unsigned int rank = 0; rank < n_ranks(); ++rank)
-      if (const double row = totals[2 + rank]; row != 0)
+      if (const double row = totals[3 + rank]; row != 0)
         throw std::runtime_error(
             "a load acts on DoF " + std::to_string(static_cast<long>(row) - 1) +
             ", which no element stiffens (is the membrane or bending part "
             "switched off?)");
     const double typical = totals[1] > 0 ? totals[0] / totals[1] : 1.0;
-    n_inactive_dofs_     = 0;
-    for (const auto i : rows)
-      if (matrix.diag_element(i) == 0)
-      {
-        matrix.set(i, i, typical);
-        ++n_inactive_dofs_;
-      }
-    Vector<double> inactive(1);
-    inactive[0] = n_inactive_dofs_;
-    sum_over_ranks(inactive);
-    n_inactive_dofs_ = static_cast<unsigned int>(inactive[0]);
+    n_inactive_dofs_     = static_cast<unsigned int>(totals[2]);
+    if (n_inactive_dofs_ > 0)
+      for (const auto i : rows)
+        if (matrix.diag_element(i) == 0)
+          matrix.set(i, i, typical);
   }
 
   Vector<double> LinearStatic::solve(LinearSolver &solver)
@@ -122,7 +120,6 @@ namespace coshell::solvers
       // Released before factorize(), so that a failed set-up leaves no
       // moved-from matrix that looks assembled.
       const auto stiffness = std::move(distributed_stiffness_);
-      distributed_pattern_.reset();
       solver.factorize(std::move(*stiffness));
     }
     else

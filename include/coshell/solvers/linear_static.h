@@ -45,8 +45,6 @@ namespace coshell::solvers
     dealii::SparsityPattern                  sparsity_;
     dealii::SparseMatrix<double>             stiffness_;
     /// Under mpirun only: a Trilinos object starts talking to MPI when built.
-    std::unique_ptr<dealii::TrilinosWrappers::SparsityPattern>
-        distributed_pattern_;
     std::unique_ptr<dealii::TrilinosWrappers::SparseMatrix>
                            distributed_stiffness_;
     dealii::Vector<double> load_;
