@@ -1,7 +1,7 @@
 // Benchmark (not a test): what each MPI rank holds for the mesh, the DoF
-// handler, the sparsity pattern and one DoF vector of the clamped square
-// plate (crossed pattern, S x S squares, six DoFs per vertex), in three
-// layouts:
+// handler, the sparsity pattern and one DoF vector of a unit square plate
+// (crossed pattern, S x S squares, six DoFs per vertex; no constraints, no
+// matrix values), in three layouts:
 //   replicated        CoShell's nonlinear and dynamic analyses under mpirun:
 //                     every rank holds the whole mesh (partitioned by METIS,
 //                     the design of parallel::shared::Triangulation), the
@@ -11,16 +11,20 @@
 //   fullydistributed  a parallel::fullydistributed::Triangulation built from
 //                     a METIS-partitioned description (rank 0 builds the
 //                     serial mesh once), a Trilinos pattern of owned rows
-//                     and vectors of locally relevant DoFs.
+//                     and deal.II vectors of locally relevant DoFs; with
+//                     --trilinos-vector also a ghosted Trilinos vector.
 // Run one layout per process, so that the peak resident set is its own:
 //   mpirun -np 2 build/benchmarks/coshell_mesh_memory fullydistributed 288
 // Prints one JSON line (rank 0): the largest value over the ranks of each
-// quantity, in bytes and seconds. doc/scripts/mesh_memory.py runs the study.
+// quantity, in bytes and seconds (totals are summed on each rank first).
+// doc/scripts/mesh_memory.py runs the study.
 
 #include <coshell/mesh/mesh.h>
+#include <coshell/model/subdomain_dofs.h>
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/timer.h>
+#include <deal.II/base/utilities.h>
 #include <deal.II/distributed/fully_distributed_tria.h>
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/dofs/dof_renumbering.h>
@@ -38,7 +42,6 @@
 
 #include <malloc.h>
 
-#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <map>
@@ -52,16 +55,23 @@ namespace
   constexpr unsigned int dofs_per_vertex = 6;
   const MPI_Comm         world           = MPI_COMM_WORLD;
 
-  /// A value of /proc/self/status in bytes: VmRSS (resident now) or VmHWM
-  /// (the peak resident set of the process so far).
-  double process_memory(const std::string &key)
+  /// Resident memory of this process in bytes: now (VmRSS) and the peak
+  /// so far (VmHWM).
+  Utilities::System::MemoryStats memory_stats()
   {
-    std::ifstream status("/proc/self/status");
-    std::string   line;
-    while (std::getline(status, line))
-      if (line.rfind(key + ":", 0) == 0)
-        return 1024.0 * std::stod(line.substr(key.size() + 1));
-    return 0;
+    Utilities::System::MemoryStats stats;
+    Utilities::System::get_memory_stats(stats);
+    return stats;
+  }
+
+  double resident_now()
+  {
+    return 1024.0 * memory_stats().VmRSS;
+  }
+
+  double resident_peak()
+  {
+    return 1024.0 * memory_stats().VmHWM;
   }
 
   /// Per-rank quantities, reduced to their maximum over the ranks.
@@ -75,14 +85,15 @@ namespace
   public:
     explicit HeapMeter(Report &report) : report_(report), last_(in_use()) {}
 
-    /// Records the growth since the previous mark as "heap_<name>_bytes",
-    /// and the process's peak so far as "peak_after_<name>_bytes" (which
-    /// phase sets the peak: the transient structures of construction).
+    /// Records the growth since the previous mark as "heap_<name>_bytes"
+    /// (and adds it to "kept_bytes"), and the process's peak so far as
+    /// "peak_after_<name>_bytes": which phase sets the peak.
     void mark(const std::string &name)
     {
-      const double now                         = in_use();
-      report_["heap_" + name + "_bytes"]       = now - last_;
-      report_["peak_after_" + name + "_bytes"] = process_memory("VmHWM");
+      const double now                   = in_use();
+      report_["heap_" + name + "_bytes"] = now - last_;
+      report_["kept_bytes"] += now - last_;
+      report_["peak_after_" + name + "_bytes"] = resident_peak();
       last_                                    = now;
     }
 
@@ -97,17 +108,17 @@ namespace
     double  last_;
   };
 
-  void make_plate(Triangulation<2, 3> &surface, unsigned int size)
+  void make_plate(Triangulation<2, 3> &surface, unsigned int subdivisions)
   {
-    coshell::mesh::make_rectangle(surface, 1.0, 1.0, size, size,
+    coshell::mesh::make_rectangle(surface, 1.0, 1.0, subdivisions, subdivisions,
                                   coshell::mesh::TrianglePattern::crossed);
   }
 
-  void metis_partition(Triangulation<2, 3> &surface, unsigned int n_parts)
+  /// METIS, one part per rank, as coshell does under mpirun.
+  void partition_for_ranks(Triangulation<2, 3> &surface, unsigned int n_ranks)
   {
-    if (n_parts > 1)
-      GridTools::partition_triangulation(n_parts, surface,
-                                         SparsityTools::Partitioner::metis);
+    if (n_ranks > 1)
+      coshell::mesh::partition(surface, n_ranks);
   }
 
   /// Counts and deal.II's own estimates, next to the heap marks.
@@ -124,36 +135,20 @@ namespace
     report["sparsity_entries"]  = pattern.n_nonzero_elements();
   }
 
-  /// The entries of the rows this rank writes: those of its own cells,
-  /// as CoShell's ShellModel::make_distributed_sparsity does.
-  IndexSet rows_of_my_cells(const DoFHandler<2, 3> &dofs, unsigned int rank)
-  {
-    IndexSet                             rows(dofs.n_dofs());
-    std::vector<types::global_dof_index> cell_dofs(
-        dofs.get_fe().n_dofs_per_cell());
-    for (const auto &cell : dofs.active_cell_iterators())
-      if (cell->subdomain_id() == rank)
-      {
-        cell->get_dof_indices(cell_dofs);
-        rows.add_indices(cell_dofs.begin(), cell_dofs.end());
-      }
-    rows.compress();
-    return rows;
-  }
-
   /// Every rank builds and partitions the whole mesh and numbers all DoFs;
   /// with 'whole_pattern' it also holds the whole sparsity pattern (the
   /// nonlinear path), else a Trilinos pattern of its own rows (linear
   /// statics). Both keep full-length DoF vectors.
-  void run_replicated(Report &report, unsigned int size, bool whole_pattern)
+  void
+  run_replicated(Report &report, unsigned int subdivisions, bool whole_pattern)
   {
     const unsigned int  n_ranks = Utilities::MPI::n_mpi_processes(world);
     const unsigned int  rank    = Utilities::MPI::this_mpi_process(world);
     HeapMeter           heap(report);
     Timer               timer;
     Triangulation<2, 3> surface;
-    make_plate(surface, size);
-    metis_partition(surface, n_ranks);
+    make_plate(surface, subdivisions);
+    partition_for_ranks(surface, n_ranks);
     report["mesh_s"] = timer.wall_time();
     heap.mark("mesh");
     const FESystem<2, 3> fe(FE_SimplexP<2, 3>(1), dofs_per_vertex);
@@ -172,7 +167,8 @@ namespace
     else
     {
       const auto owned = DoFTools::locally_owned_dofs_per_subdomain(dofs)[rank];
-      mine.reinit(owned, owned, rows_of_my_cells(dofs, rank), world);
+      mine.reinit(owned, owned,
+                  coshell::model::dofs_of_subdomain_cells(dofs, rank), world);
       DoFTools::make_sparsity_pattern(dofs, mine, AffineConstraints<double>(),
                                       false, rank);
       mine.compress();
@@ -190,7 +186,9 @@ namespace
   /// Rank 0 builds and partitions the serial mesh and sends each rank the
   /// description of its triangles and their ghost layer; every rank then
   /// numbers, couples and stores only its locally relevant DoFs.
-  void run_fully_distributed(Report &report, unsigned int size)
+  void run_fully_distributed(Report      &report,
+                             unsigned int subdivisions,
+                             bool         with_trilinos_vector)
   {
     const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(world);
     const unsigned int rank    = Utilities::MPI::this_mpi_process(world);
@@ -200,10 +198,12 @@ namespace
     {
       const auto description = TriangulationDescription::Utilities::
           create_description_from_triangulation_in_groups<2, 3>(
-              [size](Triangulation<2, 3> &serial) { make_plate(serial, size); },
+              [subdivisions](Triangulation<2, 3> &serial)
+              { make_plate(serial, subdivisions); },
               [](Triangulation<2, 3> &serial, const MPI_Comm &comm,
                  unsigned int) {
-                metis_partition(serial, Utilities::MPI::n_mpi_processes(comm));
+                partition_for_ranks(serial,
+                                    Utilities::MPI::n_mpi_processes(comm));
               },
               world, n_ranks);
       surface.create_triangulation(description);
@@ -222,23 +222,34 @@ namespace
     pattern.compress();
     report["setup_s"] = timer.wall_time();
     heap.mark("pattern");
-    // The solver's ghosted Trilinos vector, and deal.II's own distributed
-    // vector, which would hold the rotation state on locally relevant DoFs.
-    const TrilinosWrappers::MPI::Vector trilinos_vector(owned, relevant, world);
-    heap.mark("trilinos_vector");
+    // deal.II's distributed vector would hold the rotation state on the
+    // locally relevant DoFs; the solver's ghosted Trilinos vector only on
+    // request, in its own run, since it raises the peak.
     const LinearAlgebra::distributed::Vector<double> vector(owned, relevant,
                                                             world);
     heap.mark("vector");
+    TrilinosWrappers::MPI::Vector trilinos_vector;
+    if (with_trilinos_vector)
+    {
+      trilinos_vector.reinit(owned, relevant, world);
+      heap.mark("trilinos_vector");
+    }
     record_sizes(report, surface, dofs, pattern);
     report["cells_owned"] = surface.n_locally_owned_active_cells();
   }
 
-  void print_report(Report report, const std::string &layout, unsigned int size)
+  void print_report(Report             report,
+                    const std::string &layout,
+                    unsigned int       subdivisions)
   {
-    report["rss_bytes"]  = process_memory("VmRSS");
-    report["peak_bytes"] = process_memory("VmHWM");
+    report["rss_bytes"]  = resident_now();
+    report["peak_bytes"] = resident_peak();
+    // Per rank, before the maxima: both terms from the same rank.
+    report["peak_above_libraries_bytes"] =
+        report["peak_bytes"] - report["rss_start_bytes"];
     std::ostringstream json;
-    json << "{\"layout\": \"" << layout << "\", \"subdivisions\": " << size
+    json << "{\"layout\": \"" << layout
+         << "\", \"subdivisions\": " << subdivisions
          << ", \"ranks\": " << Utilities::MPI::n_mpi_processes(world);
     for (const auto &[key, value] : report)
     {
@@ -254,23 +265,29 @@ namespace
 int main(int argc, char **argv)
 {
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  const std::string                layout = argc == 3 ? argv[1] : "";
-  if (layout != "replicated" && layout != "replicated-mesh" &&
-      layout != "fullydistributed")
+  const std::string                layout = argc >= 3 ? argv[1] : "";
+  const bool                       with_trilinos_vector =
+      argc == 4 && std::string(argv[3]) == "--trilinos-vector";
+  if ((layout != "replicated" && layout != "replicated-mesh" &&
+       layout != "fullydistributed") ||
+      (argc == 4 && !(with_trilinos_vector && layout == "fullydistributed")))
   {
     std::cerr << "usage: coshell_mesh_memory "
-                 "replicated|replicated-mesh|fullydistributed SUBDIVISIONS\n";
+                 "replicated|replicated-mesh|fullydistributed SUBDIVISIONS "
+                 "[--trilinos-vector (fullydistributed)]\n";
     return 2;
   }
-  const unsigned int size = std::stoul(argv[2]);
+  const unsigned int subdivisions = std::stoul(argv[2]);
   Report             report;
   // The libraries alone (deal.II, Trilinos, MPI) are resident before any
   // mesh exists; the peak minus this is what the layout costs.
-  report["rss_start_bytes"] = process_memory("VmRSS");
+  report["rss_start_bytes"] = resident_now();
   if (layout == "fullydistributed")
-    run_fully_distributed(report, size);
+    run_fully_distributed(report, subdivisions, with_trilinos_vector);
   else
-    run_replicated(report, size, layout == "replicated");
-  print_report(report, layout, size);
+    run_replicated(report, subdivisions, layout == "replicated");
+  print_report(report,
+               layout + (with_trilinos_vector ? "+trilinos-vector" : ""),
+               subdivisions);
   return 0;
 }

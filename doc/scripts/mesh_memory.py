@@ -11,10 +11,14 @@ partitioned description built on rank 0; locally relevant DoFs only).
 Each run is its own process (build/benchmarks/coshell_mesh_memory), so its
 peak resident set (VmHWM) is the layout's; the heap growth of each phase
 (mallinfo2) says where the memory goes. Values are the largest over the
-ranks. Writes doc/performance/mesh_memory.csv and .png.
+ranks (totals summed on each rank first). On two ranks the fully distributed
+layout runs once more with a ghosted Trilinos vector
+('fullydistributed+trilinos-vector'). Writes doc/performance/mesh_memory.csv
+and .png.
 
 Usage (from the repository root; builds the benchmark if needed):
   /usr/bin/python3 doc/scripts/mesh_memory.py [--sizes 144 288 576 912]
+  /usr/bin/python3 doc/scripts/mesh_memory.py --plot-only   # PNG from CSV
 """
 import argparse
 import csv
@@ -38,7 +42,9 @@ PHASES = ["mesh", "dofs", "pattern", "trilinos_vector", "vector"]
 
 
 def run(layout, size, ranks):
-    command = [BINARY, layout, str(size)]
+    command = [BINARY] + layout.split("+") + [str(size)]
+    command = [c if c != "trilinos-vector" else "--trilinos-vector"
+               for c in command]
     if ranks > 1:
         command = ["mpirun", "--oversubscribe", "-np", str(ranks)] + command
     environment = dict(os.environ, DEAL_II_NUM_THREADS="1",
@@ -49,16 +55,21 @@ def run(layout, size, ranks):
     report = json.loads(result.stdout.strip().splitlines()[-1])
     row = {"layout": layout, "ranks": ranks, "subdivisions": size,
            "n_dofs": int(report["n_dofs"]),
-           "cells_stored_per_rank": int(report["cells_stored"])}
+           "sparsity_entries": int(report["sparsity_entries"]),
+           "cells_stored_per_rank": int(report["cells_stored"]),
+           "cells_owned_per_rank": int(report.get("cells_owned",
+                                                  report["cells_stored"]))}
     for phase in PHASES:
         if f"heap_{phase}_bytes" in report:
             row[f"heap_{phase}_MB"] = round(
                 report[f"heap_{phase}_bytes"] / MB, 2)
             row[f"peak_after_{phase}_MB"] = round(
                 report[f"peak_after_{phase}_bytes"] / MB, 1)
+    row["kept_MB"] = round(report["kept_bytes"] / MB, 1)
     row["peak_MB"] = round(report["peak_bytes"] / MB, 1)
     row["peak_above_libraries_MB"] = round(
-        (report["peak_bytes"] - report["rss_start_bytes"]) / MB, 1)
+        report["peak_above_libraries_bytes"] / MB, 1)
+    row["mesh_s"] = round(report["mesh_s"], 3)
     row["setup_s"] = round(report["setup_s"], 3)
     print(row, flush=True)
     return row
@@ -85,9 +96,10 @@ def plot_kept_heap(axes, rows):
     largest = max(r["n_dofs"] for r in rows)
     kept = [r for r in rows if r["ranks"] == 2 and r["n_dofs"] == largest]
     bottom = [0.0] * len(kept)
-    for phase in ["mesh", "dofs", "pattern", "vector"]:
-        heights = [r[f"heap_{phase}_MB"] / 1e3 for r in kept]
-        axes.bar([r["layout"] for r in kept], heights, bottom=bottom,
+    for phase in ["mesh", "dofs", "pattern", "vector", "trilinos_vector"]:
+        heights = [r.get(f"heap_{phase}_MB", 0) / 1e3 for r in kept]
+        axes.bar([r["layout"].replace("+", "\n+ ") for r in kept], heights,
+                 bottom=bottom,
                  label=phase)
         bottom = [b + h for b, h in zip(bottom, heights)]
     axes.set_ylabel("heap kept per rank [GB]")
@@ -128,14 +140,16 @@ def main():
     if arguments.plot_only:
         with open(csv_path) as f:
             stamp = ", ".join(line[2:].strip() for line in f
-                              if line.startswith("# m") or
-                              line.startswith("# c"))
+                              if line.startswith(("# machine:",
+                                                  "# commit:")))
         plot(read_rows(csv_path), csv_path[:-3] + "png", stamp)
         return
     subprocess.run(["cmake", "--build", os.path.join(ROOT, "build"),
                     "--target", "coshell_mesh_memory"], check=True)
     rows = [run(layout, size, ranks) for size in arguments.sizes
-            for ranks in (1, 2) for layout in LAYOUTS]
+            for ranks in (1, 2)
+            for layout in LAYOUTS + (["fullydistributed+trilinos-vector"]
+                                     if ranks == 2 else [])]
     fields = list(dict.fromkeys(key for row in rows for key in row))
     machine, commit = machine_and_commit()
     stamp = f"{machine}, commit {commit}"

@@ -1,6 +1,7 @@
 #include <coshell/io/expressions.h>
 #include <coshell/model/cell_loop.h>
 #include <coshell/model/shell_model.h>
+#include <coshell/model/subdomain_dofs.h>
 
 #include <deal.II/dofs/dof_renumbering.h>
 #include <deal.II/dofs/dof_tools.h>
@@ -393,17 +394,9 @@ namespace coshell::model
       const IndexSet                    &owned_rows,
       TrilinosWrappers::SparsityPattern &pattern) const
   {
-    const auto                           rank = solvers::this_rank();
-    IndexSet                             rows_of_my_cells(n_dofs());
-    std::vector<types::global_dof_index> dofs(element::shell_dofs);
-    for (const auto &cell : dof_handler_.active_cell_iterators())
-      if (cell->subdomain_id() == rank)
-      {
-        cell->get_dof_indices(dofs);
-        rows_of_my_cells.add_indices(dofs.begin(), dofs.end());
-      }
+    const auto rank             = solvers::this_rank();
+    IndexSet   rows_of_my_cells = dofs_of_subdomain_cells(dof_handler_, rank);
     // Constraints tie a DoF of my cells to others: their rows are written.
-    rows_of_my_cells.compress();
     std::vector<types::global_dof_index> constrained_to;
     for (const auto &line : constraints.get_lines())
       if (rows_of_my_cells.is_element(line.index))
