@@ -68,6 +68,21 @@ coshell_mpi_test(cantilever_plate_dynamics_restart
 # The parallel run writes Output/Format = pvtu: one piece per rank.
 coshell_mpi_test(plate_on_plane_mumps contact/plate_on_plane.prm amesos-mumps
                  --check-pvtu)
+# Self contact on two ranks: pairs couple vertices of different ranks, so
+# the distributed tangent's pattern grows by them, and each rank adds the
+# rows it owns of the pair terms every rank computes. A plate resting on
+# a clamped plate of the same mesh (11 Newton iterations), and the
+# roll-up's static stage (40 load steps, 185 iterations), whose tip comes
+# to rest on the tail as the pair list changes from step to step. The
+# roll-up's dynamic stage is left out: through the snap it amplifies
+# round-off (the two runs part by 1e-12 at first, and by about 50x per
+# three steps) and comes to rest 2e-4 apart; so do two serial runs, one
+# with UMFPACK and one with MUMPS (tip_ux -5.28334 against -5.28442).
+coshell_mpi_test(self_contact_plate_on_plate_mumps contact/plate_on_plate.prm
+                 amesos-mumps)
+coshell_mpi_test(self_contact_rollup_statics_mumps
+                 contact/self_contact_rollup.prm amesos-mumps
+                 --set "Stage 2/Analysis type=none")
 
 # coshell_mpi_bad_input_test(NAME PATTERN RANKS coshell arguments...): the
 # run under mpirun must stop with a message matching PATTERN.

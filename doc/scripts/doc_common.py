@@ -1,8 +1,11 @@
 """Helpers shared by the documentation scripts: machine/commit stamps,
 CSV files with '#' provenance lines, and finishing a matplotlib figure."""
 import csv
+import json
 import os
+import re
 import subprocess
+import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
@@ -25,6 +28,38 @@ def machine_and_commit():
     dirty = subprocess.run(["git", "-C", ROOT, "status", "--porcelain", "source", "include"],
                            capture_output=True, text=True).stdout.strip()
     return f"{model}, {cores} cores", commit + (" (+ uncommitted source changes)" if dirty else "")
+
+
+def run_with_peak_memory(command, environment):
+    """Runs 'command' under /usr/bin/time -v: (the completed process, its
+    wall time in s, the peak resident set of its largest process in kB;
+    under mpirun that is one rank)."""
+    start = time.time()
+    result = subprocess.run(["/usr/bin/time", "-v"] + command, env=environment,
+                            capture_output=True, text=True)
+    wall = time.time() - start
+    found = re.search(r"Maximum resident set size \(kbytes\): (\d+)",
+                      result.stderr)
+    return result, wall, int(found.group(1)) if found else 0
+
+
+def run_scene_measured(command, ranks, threads, output):
+    """Runs a coshell command line on 'ranks' MPI ranks (mpirun when more
+    than one) with 'threads' threads each, writing into 'output': (its
+    summary.json, the process wall time in s, the peak resident set of the
+    largest process in kB), or None (printing the end of its output) if it
+    failed."""
+    if ranks > 1:
+        command = ["mpirun", "--oversubscribe", "-np", str(ranks)] + command
+    environment = dict(os.environ, DEAL_II_NUM_THREADS=str(threads),
+                       OMPI_ALLOW_RUN_AS_ROOT="1",
+                       OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    result, wall, peak_kb = run_with_peak_memory(command, environment)
+    if result.returncode != 0:
+        print(result.stdout[-2000:], result.stderr[-2000:])
+        return None
+    with open(os.path.join(output, "summary.json")) as f:
+        return json.load(f), wall, peak_kb
 
 
 def write_csv(path, rows, header_lines, fields=None):

@@ -25,16 +25,13 @@ Usage (from the repository root):
 """
 import argparse
 import csv
-import json
 import os
-import re
 import shutil
-import subprocess
 import sys
-import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from doc_common import ROOT, machine_and_commit, write_csv  # noqa: E402
+from doc_common import (ROOT, machine_and_commit,  # noqa: E402
+                        run_scene_measured, write_csv)
 
 import matplotlib  # noqa: E402
 matplotlib.use("Agg")
@@ -55,22 +52,10 @@ def run(coshell, size, method, ranks, threads, scratch):
                "--set", "Mesh/Refinement levels=0",
                "--set", "Output/Write VTU=false",
                "--set", f"Linear solver/Method={method}"]
-    if ranks > 1:
-        command = ["mpirun", "--oversubscribe", "-np", str(ranks)] + command
-    environment = dict(os.environ, DEAL_II_NUM_THREADS=str(threads),
-                       OMPI_ALLOW_RUN_AS_ROOT="1",
-                       OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
-    start = time.time()
-    result = subprocess.run(["/usr/bin/time", "-v"] + command, env=environment,
-                            capture_output=True, text=True)
-    wall = time.time() - start
-    if result.returncode != 0:
-        print(result.stdout[-2000:], result.stderr[-2000:])
+    measured = run_scene_measured(command, ranks, threads, output)
+    if measured is None:
         return None
-    peak_kb = int(re.search(r"Maximum resident set size \(kbytes\): (\d+)",
-                            result.stderr).group(1))
-    with open(os.path.join(output, "summary.json")) as f:
-        summary = json.load(f)
+    summary, wall, peak_kb = measured
     row = {"method": method, "ranks": ranks, "threads_per_rank": threads,
            "subdivisions": size, "n_dofs": summary["n_dofs"],
            "iterations": summary.get("linear_solver_iterations", 1),

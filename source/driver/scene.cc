@@ -833,10 +833,16 @@ namespace coshell::driver
                        problem.load_factor(), record.relative_residual,
                        record.correction_norm, record.relative_energy});
     };
+    const auto   wall            = std::chrono::steady_clock::now();
+    const double solver_before   = linear_solver_.seconds();
+    const double assembly_before = problem.assembly_seconds();
     path_following_.run(problem, linear_solver_,
                         stages_.staged() ? std::vector<double>()
                                          : quantities_.reference_load_factors(),
                         on_step, on_iteration, log);
+    result.static_wall_time_s += seconds_since(wall);
+    result.static_assembly_s += problem.assembly_seconds() - assembly_before;
+    result.static_linear_solver_s += linear_solver_.seconds() - solver_before;
   }
 
   io::LevelResult Scene::run_stages(const model::ShellModel &model,

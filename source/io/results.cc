@@ -16,6 +16,21 @@ namespace coshell::io
     return errors;
   }
 
+  namespace
+  {
+    /// A phase's wall time and its split, in seconds.
+    void write_split(Json  &split,
+                     double total,
+                     double assembly,
+                     double linear_solver)
+    {
+      split["total"]         = total;
+      split["assembly"]      = assembly;
+      split["linear_solver"] = linear_solver;
+      split["other"]         = total - assembly - linear_solver;
+    }
+  } // namespace
+
   Json LevelResult::to_json() const
   {
     Json json;
@@ -42,20 +57,20 @@ namespace coshell::io
     if (load_steps > 0 || steps > 0)
       json["newton_iterations"] = newton_iterations;
     if (load_steps > 0)
+    {
       json["load_steps"] = load_steps;
+      write_split(json["load_stepping_s"], static_wall_time_s,
+                  static_assembly_s, static_linear_solver_s);
+    }
     if (steps > 0)
     {
       json["steps"]            = steps;
       json["simulated_time_s"] = simulated_time_s;
       if (!std::isnan(initial_total_energy))
         json["initial_total_energy"] = initial_total_energy;
+      write_split(json["time_stepping_s"], dynamic_wall_time_s,
+                  dynamic_assembly_s, dynamic_linear_solver_s);
       // Simulated time over the wall time of the time stepping.
-      Json &stepping            = json["time_stepping_s"];
-      stepping["total"]         = dynamic_wall_time_s;
-      stepping["assembly"]      = dynamic_assembly_s;
-      stepping["linear_solver"] = dynamic_linear_solver_s;
-      stepping["other"] =
-          dynamic_wall_time_s - dynamic_assembly_s - dynamic_linear_solver_s;
       json["real_time_factor"] =
           simulated_time_s / std::max(dynamic_wall_time_s, 1e-12);
     }

@@ -390,9 +390,10 @@ namespace coshell::model
   }
 
   void ShellModel::make_distributed_sparsity(
-      const AffineConstraints<double>   &constraints,
-      const IndexSet                    &owned_rows,
-      TrilinosWrappers::SparsityPattern &pattern) const
+      const AffineConstraints<double>                &constraints,
+      const IndexSet                                 &owned_rows,
+      TrilinosWrappers::SparsityPattern              &pattern,
+      const std::vector<std::array<unsigned int, 2>> &coupled) const
   {
     const auto rank             = solvers::this_rank();
     IndexSet   rows_of_my_cells = dofs_of_subdomain_cells(dof_handler_, rank);
@@ -408,6 +409,16 @@ namespace coshell::model
     pattern.reinit(owned_rows, owned_rows, rows_of_my_cells, MPI_COMM_WORLD);
     DoFTools::make_sparsity_pattern(dof_handler_, pattern, constraints, false,
                                     rank);
+    // Terms that couple vertices beyond the cells reach each row from the
+    // rank that owns it (see solvers::RowsOf).
+    for (const auto &[v, w] : coupled)
+      for (const auto &[row_vertex, column_vertex] :
+           {std::pair{v, w}, std::pair{w, v}})
+        for (unsigned int i = 0; i < 3; ++i)
+          if (const auto row = vertex_dofs_[row_vertex][i];
+              owned_rows.is_element(row))
+            for (unsigned int j = 0; j < 3; ++j)
+              pattern.add(row, vertex_dofs_[column_vertex][j]);
     pattern.compress();
   }
 

@@ -1,5 +1,8 @@
 #include <coshell/model/shell_problem.h>
 
+#include <coshell/solvers/parallel_environment.h>
+
+#include <deal.II/lac/affine_constraints.templates.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 
 #include <algorithm>
@@ -22,7 +25,7 @@ namespace coshell::model
   {
     constraints_.copy_from(constraints);
     homogeneous_.copy_from(constraints);
-    model_.make_sparsity(homogeneous_, sparsity_);
+    make_sparsities();
     for (const auto &contribution : contributions_)
       couples_beyond_cells_ |= contribution->couples_beyond_cells();
     for (auto &force : forces_)
@@ -66,6 +69,26 @@ namespace coshell::model
     return sparsity_;
   }
 
+  void ShellProblem::make_sparsities()
+  {
+    model_.make_sparsity(homogeneous_, sparsity_, coupled_vertices_);
+    if (!solvers::distributed())
+      return;
+    if (!distributed_sparsity_)
+      distributed_sparsity_ =
+          std::make_unique<TrilinosWrappers::SparsityPattern>();
+    model_.make_distributed_sparsity(homogeneous_, model_.locally_owned_dofs(),
+                                     *distributed_sparsity_, coupled_vertices_);
+  }
+
+  void ShellProblem::reinit_tangent(solvers::TangentMatrix &tangent) const
+  {
+    if (distributed_sparsity_)
+      tangent.reinit(*distributed_sparsity_);
+    else
+      tangent.reinit(sparsity_);
+  }
+
   void ShellProblem::begin_solve()
   {
     std::vector<std::array<unsigned int, 2>> couplings;
@@ -83,7 +106,7 @@ namespace coshell::model
     if (couplings == coupled_vertices_)
       return;
     coupled_vertices_ = std::move(couplings);
-    model_.make_sparsity(homogeneous_, sparsity_, coupled_vertices_);
+    make_sparsities();
   }
 
   EvaluationPoint ShellProblem::point() const
@@ -117,11 +140,12 @@ namespace coshell::model
         std::tuple_size_v<decltype(CellContribution::forces_by_kind)>;
   } // namespace
 
+  template<typename Matrix>
   void
   ShellProblem::assemble(const std::function<bool(const Contribution &)> &use,
                          const EvaluationPoint                           &at,
-                         Vector<double>       *residual,
-                         SparseMatrix<double> *tangent)
+                         Vector<double> *residual,
+                         Matrix         *tangent)
   {
     std::vector<const Contribution *> active;
     for (const auto &contribution : contributions_)
@@ -189,9 +213,19 @@ namespace coshell::model
       solvers::sum_over_ranks(*tangent);
   }
 
+  void
+  ShellProblem::add_up_over_ranks(Vector<double> *residual,
+                                  TrilinosWrappers::SparseMatrix * /*tangent*/)
+  {
+    // Each rank's cells went into the distributed tangent; its compress()
+    // adds them up.
+    add_up_over_ranks(residual, static_cast<SparseMatrix<double> *>(nullptr));
+  }
+
+  template<typename Matrix>
   void ShellProblem::assemble_blocks(const EvaluationPoint &at,
                                      Vector<double>        &residual,
-                                     SparseMatrix<double>  *tangent)
+                                     Matrix                *tangent)
   {
     for (const auto &contribution : contributions_)
     {
@@ -236,14 +270,14 @@ namespace coshell::model
     return assembly_seconds_;
   }
 
-  void ShellProblem::evaluate(Vector<double>       &residual,
-                              SparseMatrix<double> *tangent)
+  void ShellProblem::evaluate(Vector<double>         &residual,
+                              solvers::TangentMatrix *tangent)
   {
     const auto start = std::chrono::steady_clock::now();
     update_inhomogeneities();
     residual = 0;
     if (tangent)
-      *tangent = 0;
+      tangent->zero();
     for (auto &force : forces_)
       force = 0;
     const EvaluationPoint at = point();
@@ -252,8 +286,21 @@ namespace coshell::model
       contribution->prepare(at);
       pending_ = pending_ || contribution->pending();
     }
-    assemble([](const Contribution &) { return true; }, at, &residual, tangent);
-    assemble_blocks(at, residual, tangent);
+    const auto every = [](const Contribution &) { return true; };
+    if (tangent && tangent->distributed())
+    {
+      auto &matrix = tangent->trilinos();
+      assemble(every, at, &residual, &matrix);
+      solvers::RowsOf owned_rows(matrix, model_.locally_owned_dofs());
+      assemble_blocks(at, residual, &owned_rows);
+      matrix.compress(VectorOperation::add);
+    }
+    else
+    {
+      SparseMatrix<double> *matrix = tangent ? &tangent->serial() : nullptr;
+      assemble(every, at, &residual, matrix);
+      assemble_blocks(at, residual, matrix);
+    }
     // Each contribution's global terms, kept by kind for the force scale.
     global_force_ = 0;
     for (const auto &contribution : contributions_)
@@ -397,7 +444,7 @@ namespace coshell::model
     const EvaluationPoint at{state_, time_, 1.0, 0, 0};
     assemble([](const Contribution &c)
              { return c.kind() == ForceKind::external; },
-             at, &unit_load, nullptr);
+             at, &unit_load, static_cast<SparseMatrix<double> *>(nullptr));
     for (const auto &contribution : contributions_)
       if (contribution->kind() == ForceKind::external)
         contribution->add_global(at, unit_load);

@@ -251,6 +251,14 @@ namespace coshell::solvers
     set_up_trilinos_solver();
   }
 
+  void LinearSolver::factorize(TangentMatrix &tangent, bool symmetric)
+  {
+    if (tangent.distributed())
+      factorize(tangent.take_trilinos());
+    else
+      factorize(tangent.serial(), symmetric);
+  }
+
   const IndexSet &LinearSolver::distributed_rows() const
   {
     static const IndexSet none;

@@ -132,9 +132,9 @@ namespace coshell::solvers
   {
   }
 
-  Vector<double> Newton::correction(NonlinearProblem           &problem,
-                                    const SparseMatrix<double> &tangent,
-                                    const Vector<double>       &residual) const
+  Vector<double> Newton::correction(NonlinearProblem     &problem,
+                                    TangentMatrix        &tangent,
+                                    const Vector<double> &residual) const
   {
     linear_solver_.factorize(tangent, problem.symmetric_tangent());
     Vector<double> x(residual.size());
@@ -186,13 +186,14 @@ namespace coshell::solvers
                              const Observer   &observer) const
   {
     problem.begin_solve();
-    SparseMatrix<double> tangent(problem.sparsity());
-    Vector<double>       residual(problem.sparsity().n_rows());
-    Vector<double>       step_increment(residual.size());
-    double               first_energy     = 0;
-    bool                 correction_small = false;
-    CorrectionRecord     corrections;
-    unsigned int         climbs = 0; // corrections that climbed the energy
+    TangentMatrix tangent;
+    problem.reinit_tangent(tangent);
+    Vector<double>   residual(problem.sparsity().n_rows());
+    Vector<double>   step_increment(residual.size());
+    double           first_energy     = 0;
+    bool             correction_small = false;
+    CorrectionRecord corrections;
+    unsigned int     climbs = 0; // corrections that climbed the energy
     for (unsigned int iteration = 0;; ++iteration)
     {
       problem.evaluate(residual, &tangent);
@@ -266,8 +267,9 @@ namespace coshell::solvers
                                    const Observer   &observer) const
   {
     problem.begin_solve();
-    SparseMatrix<double> tangent(problem.sparsity());
-    Vector<double>       residual(problem.sparsity().n_rows());
+    TangentMatrix tangent;
+    problem.reinit_tangent(tangent);
+    Vector<double> residual(problem.sparsity().n_rows());
     problem.evaluate(residual, &tangent);
     const double relative_residual =
         residual.l2_norm() / std::max(problem.force_scale(), 1e-300);

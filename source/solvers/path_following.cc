@@ -181,9 +181,10 @@ namespace coshell::solvers
   /// Returns the iterations; throws NewtonFailure.
   unsigned int PathFollowing::arc_length_step(Run &run, double arc) const
   {
-    EvolutionProblem    &problem = run.problem;
-    SparseMatrix<double> tangent(problem.sparsity());
-    Vector<double>       residual(problem.sparsity().n_rows()), load;
+    EvolutionProblem &problem = run.problem;
+    TangentMatrix     tangent;
+    problem.reinit_tangent(tangent);
+    Vector<double> residual(problem.sparsity().n_rows()), load;
     problem.set_path_parameter(run.parameter);
     problem.path_direction(load);
     problem.evaluate(residual, &tangent);
@@ -255,8 +256,9 @@ namespace coshell::solvers
   /// first).
   void PathFollowing::arc_length_path(Run &run) const
   {
-    SparseMatrix<double> tangent(run.problem.sparsity());
-    Vector<double>       residual(run.problem.sparsity().n_rows()), load;
+    TangentMatrix tangent;
+    run.problem.reinit_tangent(tangent);
+    Vector<double> residual(run.problem.sparsity().n_rows()), load;
     run.problem.set_path_parameter(0);
     run.problem.path_direction(load);
     run.problem.evaluate(residual, &tangent);

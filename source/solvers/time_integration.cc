@@ -116,7 +116,11 @@ namespace coshell::solvers
       {
         problem_.begin_solve();
       }
-      void evaluate(Vector<double> &r, SparseMatrix<double> *K) override
+      void reinit_tangent(TangentMatrix &K) const override
+      {
+        problem_.reinit_tangent(K);
+      }
+      void evaluate(Vector<double> &r, TangentMatrix *K) override
       {
         problem_.evaluate(r, K);
       }

@@ -21,6 +21,7 @@ namespace
   using coshell::solvers::NewtonParameters;
   using coshell::solvers::NonlinearProblem;
   using coshell::solvers::StepController;
+  using coshell::solvers::TangentMatrix;
 
   /// r_i(x) = load_i - (k x_i + c x_i^3) - coupling (x_i - x_j), i != j;
   /// unknown 'fixed' (if any) is prescribed to 'prescribed_value' through
@@ -47,9 +48,10 @@ namespace
       return pattern_;
     }
 
-    void evaluate(Vector<double> &r, SparseMatrix<double> *K) override
+    void evaluate(Vector<double> &r, TangentMatrix *tangent) override
     {
-      scale_ = 0;
+      SparseMatrix<double> *K = tangent ? &tangent->serial() : nullptr;
+      scale_                  = 0;
       for (unsigned int i = 0; i < x_.size(); ++i)
       {
         const double internal = x_[i] + c_ * std::pow(x_[i], 3) +

@@ -41,6 +41,10 @@ namespace coshell::io
     double initial_total_energy = std::numeric_limits<double>::quiet_NaN();
     /// Of that wall time: residual/tangent assembly and linear solver.
     double dynamic_assembly_s = 0, dynamic_linear_solver_s = 0;
+    /// Static stages of a nonlinear analysis: the wall time of the load
+    /// path (s), and of it the assembly and the linear solver.
+    double static_wall_time_s = 0, static_assembly_s = 0,
+           static_linear_solver_s = 0;
     std::map<std::string, double> qoi, reference;
     /// Contact: smallest gap and largest penetration over the run (length),
     /// barrier stiffness, and the seconds spent in detection, pair terms

@@ -113,11 +113,14 @@ namespace coshell::model
                        dealii::SparseMatrix<double>            &matrix) const;
 
     /// On several ranks: the pattern of the rows 'owned_rows' of this rank,
-    /// which may also write to the rows of its cells that other ranks own.
+    /// which may also write to the rows of its cells that other ranks own,
+    /// plus the translations of each pair of 'coupled' vertices in the rows
+    /// it owns.
     void make_distributed_sparsity(
-        const dealii::AffineConstraints<double>   &constraints,
-        const dealii::IndexSet                    &owned_rows,
-        dealii::TrilinosWrappers::SparsityPattern &pattern) const;
+        const dealii::AffineConstraints<double>        &constraints,
+        const dealii::IndexSet                         &owned_rows,
+        dealii::TrilinosWrappers::SparsityPattern      &pattern,
+        const std::vector<std::array<unsigned int, 2>> &coupled = {}) const;
     /// Assembles this rank's cells into a matrix on that pattern; entries
     /// of rows owned elsewhere travel to their rank once, in compress().
     void

@@ -7,6 +7,7 @@
 
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/sparsity_pattern.h>
+#include <deal.II/lac/trilinos_sparsity_pattern.h>
 
 #include <array>
 #include <functional>
@@ -56,11 +57,14 @@ namespace coshell::model
 
     // solvers::NonlinearProblem
     const dealii::SparsityPattern &sparsity() const override;
+    /// Under mpirun each rank holds its rows of the tangent and assembles
+    /// its cells into it (a distributed Trilinos matrix).
+    void reinit_tangent(solvers::TangentMatrix &tangent) const override;
     /// Grows the pattern by the vertex couplings the contributions ask
     /// for (self contact); rebuilt only when they change.
     void   begin_solve() override;
-    void   evaluate(dealii::Vector<double>       &residual,
-                    dealii::SparseMatrix<double> *tangent) override;
+    void   evaluate(dealii::Vector<double> &residual,
+                    solvers::TangentMatrix *tangent) override;
     double force_scale() const override;
     bool   prescribed_increment_pending() const override;
     void   distribute(dealii::Vector<double> &correction) const override;
@@ -129,6 +133,10 @@ namespace coshell::model
     std::vector<std::unique_ptr<Contribution>> contributions_;
     PrescribedIncrementFunction                prescribed_;
     dealii::SparsityPattern                    sparsity_;
+    /// Under mpirun: this rank's rows of the same pattern.
+    std::unique_ptr<dealii::TrilinosWrappers::SparsityPattern>
+         distributed_sparsity_;
+    void make_sparsities();
     /// The extra vertex couplings sparsity_ was built with, sorted, and
     /// as the contributions gave them.
     std::vector<std::array<unsigned int, 2>> coupled_vertices_;
@@ -153,18 +161,25 @@ namespace coshell::model
     EvaluationPoint point() const;
     double          current_force_scale() const;
     void            update_inhomogeneities();
-    /// Adds the blocks of the contributions (contact pairs).
-    void assemble_blocks(const EvaluationPoint        &at,
-                         dealii::Vector<double>       &residual,
-                         dealii::SparseMatrix<double> *tangent);
+    /// Adds the blocks of the contributions (contact pairs). Every rank
+    /// finds the same blocks; a distributed tangent takes each row from the
+    /// rank that owns it (solvers::RowsOf).
+    template<typename Matrix>
+    void assemble_blocks(const EvaluationPoint  &at,
+                         dealii::Vector<double> &residual,
+                         Matrix                 *tangent);
     /// Runs the cell terms of the contributions 'use' selects. On several
-    /// ranks each assembles the cells it owns and the sums are added up
-    /// over the ranks, so 'residual' and 'tangent' must be zero on entry.
+    /// ranks each assembles the cells it owns; the residual and a complete
+    /// (deal.II) tangent are then added up over the ranks, so they must be
+    /// zero on entry. A distributed tangent needs compress() afterwards.
+    template<typename Matrix>
     void assemble(const std::function<bool(const Contribution &)> &use,
                   const EvaluationPoint                           &at,
                   dealii::Vector<double>                          *residual,
-                  dealii::SparseMatrix<double>                    *tangent);
+                  Matrix                                          *tangent);
     void add_up_over_ranks(dealii::Vector<double>       *residual,
                            dealii::SparseMatrix<double> *tangent);
+    void add_up_over_ranks(dealii::Vector<double>                 *residual,
+                           dealii::TrilinosWrappers::SparseMatrix *tangent);
   };
 } // namespace coshell::model

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <coshell/solvers/tangent_matrix.h>
+
 #include <deal.II/base/index_set.h>
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/lac/sparse_matrix.h>
@@ -40,6 +42,9 @@ namespace coshell::solvers
     /// distributed_rows(), assembled by the ranks together, and factorizes
     /// it or sets up its preconditioner; no rank holds the whole matrix.
     void factorize(dealii::TrilinosWrappers::SparseMatrix &&matrix);
+    /// A tangent assembled by a NonlinearProblem: the deal.II matrix as
+    /// above, or the distributed one, which the solver takes over.
+    void factorize(TangentMatrix &tangent, bool symmetric);
     /// The rows this rank holds under mpirun (see set_row_partition); empty
     /// on one rank, where the solvers take complete deal.II matrices.
     const dealii::IndexSet &distributed_rows() const;

@@ -82,9 +82,9 @@ namespace coshell::solvers
 
     /// Factorizes the tangent and solves for the correction (distributed).
     dealii::Vector<double>
-           correction(NonlinearProblem                   &problem,
-                      const dealii::SparseMatrix<double> &tangent,
-                      const dealii::Vector<double>       &residual) const;
+           correction(NonlinearProblem             &problem,
+                      TangentMatrix                &tangent,
+                      const dealii::Vector<double> &residual) const;
     double line_search_scale(NonlinearProblem             &problem,
                              const dealii::Vector<double> &residual,
                              const dealii::Vector<double> &correction) const;

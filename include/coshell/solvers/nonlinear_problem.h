@@ -1,6 +1,7 @@
 #pragma once
 
-#include <deal.II/lac/sparse_matrix.h>
+#include <coshell/solvers/tangent_matrix.h>
+
 #include <deal.II/lac/sparsity_pattern.h>
 #include <deal.II/lac/vector.h>
 
@@ -20,6 +21,14 @@ namespace coshell::solvers
     /// Pattern of the tangent. It may change only in begin_solve().
     virtual const dealii::SparsityPattern &sparsity() const = 0;
 
+    /// Sizes 'tangent' for the current pattern: complete on one rank; a
+    /// problem that distributes its tangent over the ranks gives each rank
+    /// its rows.
+    virtual void reinit_tangent(TangentMatrix &tangent) const
+    {
+      tangent.reinit(sparsity());
+    }
+
     /// Called by Newton before it sizes the tangent of a solve: a problem
     /// whose couplings grow (self contact) updates sparsity() here.
     virtual void begin_solve() {}
@@ -29,8 +38,9 @@ namespace coshell::solvers
     /// the increment that apply_increment() takes. While a prescribed
     /// increment of constrained unknowns is pending, the residual contains
     /// its effect on the free ones (inhomogeneous constraints).
-    virtual void evaluate(dealii::Vector<double>       &residual,
-                          dealii::SparseMatrix<double> *tangent) = 0;
+    /// 'tangent' comes from reinit_tangent() of the same solve.
+    virtual void evaluate(dealii::Vector<double> &residual,
+                          TangentMatrix          *tangent) = 0;
 
     /// The size of the forces at the last evaluate(), against which |r| is
     /// measured. It must not vanish when the external load does (a
