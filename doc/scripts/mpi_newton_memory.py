@@ -15,7 +15,7 @@ time, the load path's time from summary.json (wall_time_s.solve) and, where
 the binary writes it, its split (load_stepping_s: assembly, linear solver),
 Newton iterations and the centre deflection (both runs must agree).
 
-Writes doc/performance/mpi_newton_memory.csv and .png.
+Writes doc/performance/mpi_newton_memory_METHOD.csv and .png.
 
 Usage (from the repository root):
   /usr/bin/python3 doc/scripts/mpi_newton_memory.py --old OLD/coshell \\
@@ -117,9 +117,9 @@ def main():
               f"co-rotational clamped square plate, crossed, CST+DKT, "
               f"{args.size} x {args.size}, {args.load_steps} load steps, "
               f"{args.method}, one thread per rank"]
-    write_csv(os.path.join(OUT_DIR, "mpi_newton_memory.csv"), rows, header)
-    plot(rows, os.path.join(OUT_DIR, "mpi_newton_memory.png"),
-         f"{machine}; commit {commit}")
+    name = os.path.join(OUT_DIR, f"mpi_newton_memory_{args.method}")
+    write_csv(name + ".csv", rows, header)
+    plot(rows, name + ".png", f"{args.method}; {machine}; commit {commit}")
 
 
 if __name__ == "__main__":

@@ -7,9 +7,11 @@
 #include <deal.II/lac/solver_cg.h>
 #include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/solver_gmres.h>
+#include <deal.II/lac/trilinos_index_access.h>
 #include <deal.II/lac/trilinos_precondition.h>
 #include <deal.II/lac/trilinos_solver.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_sparsity_pattern.h>
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <Teuchos_ParameterList.hpp>
@@ -70,6 +72,62 @@ namespace coshell::solvers
       sum_over_ranks(x);
     }
   };
+
+  namespace
+  {
+    /// Calls use(row, columns, values) with the entries of each row of this
+    /// rank that are not exactly zero.
+    template<typename Use>
+    void for_each_nonzero_row(const TrilinosWrappers::SparseMatrix &matrix,
+                              const Use                            &use)
+    {
+      const Epetra_CrsMatrix              &entries = matrix.trilinos_matrix();
+      std::vector<types::global_dof_index> columns;
+      std::vector<double>                  values;
+      for (int local_row = 0; local_row < entries.NumMyRows(); ++local_row)
+      {
+        int     n;
+        double *row_values;
+        int    *local_columns;
+        entries.ExtractMyRowView(local_row, n, row_values, local_columns);
+        columns.clear();
+        values.clear();
+        for (int k = 0; k < n; ++k)
+          if (row_values[k] != 0)
+          {
+            columns.push_back(TrilinosWrappers::global_column_index(
+                entries, local_columns[k]));
+            values.push_back(row_values[k]);
+          }
+        use(TrilinosWrappers::global_row_index(entries, local_row), columns,
+            values);
+      }
+    }
+
+    /// A copy of 'matrix' without its entries that are exactly zero. An
+    /// assembled pattern holds structural zeros (a flat shell's couplings of
+    /// membrane and bending, there for when it bends), and MUMPS and ML
+    /// analyse the pattern, so each zero would cost fill and time; copying
+    /// a deal.II matrix into Trilinos (drop tolerance 0) drops them alike.
+    TrilinosWrappers::SparseMatrix
+    without_zeros(const TrilinosWrappers::SparseMatrix &matrix)
+    {
+      TrilinosWrappers::SparsityPattern pattern(
+          matrix.locally_owned_range_indices(),
+          matrix.locally_owned_domain_indices(), matrix.get_mpi_communicator());
+      for_each_nonzero_row(
+          matrix, [&](auto row, const auto &columns, const auto &)
+          { pattern.add_entries(row, columns.begin(), columns.end(), true); });
+      pattern.compress();
+      TrilinosWrappers::SparseMatrix copy;
+      copy.reinit(pattern);
+      for_each_nonzero_row(
+          matrix, [&](auto row, const auto &columns, const auto &values)
+          { copy.set(row, columns, values); });
+      copy.compress(VectorOperation::insert);
+      return copy;
+    }
+  } // namespace
 
   LinearSolver::LinearSolver() : backend_(std::make_unique<Backend>()) {}
 
@@ -246,8 +304,13 @@ namespace coshell::solvers
                            "set_row_partition()"));
     backend_->using_cholmod = false;
     unfactorized_           = nullptr;
-    backend_->replace_trilinos_matrix(
-        std::make_unique<TrilinosWrappers::SparseMatrix>(std::move(matrix)));
+    // The old factors go before the copy is made, the assembled matrix
+    // right after.
+    backend_->replace_trilinos_matrix(nullptr);
+    auto kept =
+        std::make_unique<TrilinosWrappers::SparseMatrix>(without_zeros(matrix));
+    matrix.clear();
+    backend_->replace_trilinos_matrix(std::move(kept));
     set_up_trilinos_solver();
   }
 
