@@ -22,6 +22,7 @@ Usage (from the repository root):
       --new build/coshell --size 144
 """
 import argparse
+import csv
 import os
 import shutil
 import sys
@@ -79,7 +80,8 @@ def run(args, label, binary, ranks):
 
 def plot(rows, path, stamp):
     figure, (memory, seconds) = plt.subplots(1, 2, figsize=(9, 4))
-    labels = [f"{r['binary']}\n{r['ranks']} rank(s)" for r in rows]
+    labels = [r["binary"].replace(" ", "\n") + f"\n{r['ranks']} rank(s)"
+              for r in rows]
     memory.bar(range(len(rows)), [r["peak_rss_mb_largest_process"]
                                   for r in rows], color="tab:blue")
     memory.set_xticks(range(len(rows)), labels, fontsize=7)
@@ -95,6 +97,17 @@ def plot(rows, path, stamp):
     print("wrote", path)
 
 
+def redraw(name):
+    with open(name + ".csv") as f:
+        lines = f.readlines()
+    stamp = "; ".join(l[2:].strip() for l in lines[:2] if l.startswith("#"))
+    rows = list(csv.DictReader(l for l in lines if not l.startswith("#")))
+    for row in rows:
+        for key in ("peak_rss_mb_largest_process", "load_path_s_per_iteration"):
+            row[key] = float(row[key])
+    plot(rows, name + ".png", stamp)
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--old", required=True, help="binary before")
@@ -106,7 +119,13 @@ def main():
     parser.add_argument("--method", default="amesos-mumps")
     parser.add_argument("--rounds", type=int, default=2)
     parser.add_argument("--scratch", default="/tmp/coshell_mpi_newton_memory")
+    parser.add_argument("--plot-only", action="store_true",
+                        help="redraw the PNG from the CSV")
     args = parser.parse_args()
+    name = os.path.join(OUT_DIR, f"mpi_newton_memory_{args.method}")
+    if args.plot_only:
+        redraw(name)
+        return
     machine, commit = machine_and_commit()
     rows = [run(args, args.new_label, args.new, 1)]
     for _ in range(args.rounds):
@@ -117,7 +136,6 @@ def main():
               f"co-rotational clamped square plate, crossed, CST+DKT, "
               f"{args.size} x {args.size}, {args.load_steps} load steps, "
               f"{args.method}, one thread per rank"]
-    name = os.path.join(OUT_DIR, f"mpi_newton_memory_{args.method}")
     write_csv(name + ".csv", rows, header)
     plot(rows, name + ".png", f"{args.method}; {machine}; commit {commit}")
 
