@@ -422,10 +422,13 @@ namespace coshell::driver
     std::vector<std::unique_ptr<model::Contribution>> inertia;
     inertia.push_back(std::make_unique<model::Inertia>(model, inertia_));
     model::ShellProblem  problem(model, state, constraints, std::move(inertia));
-    SparseMatrix<double> stiffness(problem.sparsity()),
-        mass(problem.sparsity());
+    SparseMatrix<double> stiffness(problem.sparsity());
     model.assemble_stiffness(constraints, stiffness);
-    problem.mass_matrix(mass);
+    // Modes run on one rank (checked above): the mass is a deal.II matrix.
+    solvers::TangentMatrix mass_tangent;
+    problem.reinit_tangent(mass_tangent);
+    problem.mass_matrix(mass_tangent);
+    SparseMatrix<double> &mass = mass_tangent.serial();
     // Constrained rows: no mass, so their eigenvalues go to infinity.
     for (unsigned int i = 0; i < mass.m(); ++i)
       if (constraints.is_constrained(i))

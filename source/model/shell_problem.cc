@@ -499,9 +499,9 @@ namespace coshell::model
     velocity_coefficient_     = velocity_coefficient;
   }
 
-  void ShellProblem::mass_matrix(SparseMatrix<double> &mass)
+  void ShellProblem::mass_matrix(solvers::TangentMatrix &mass)
   {
-    mass                        = 0;
+    mass.zero();
     EvaluationPoint at          = point();
     at.acceleration_coefficient = 1;
     at.velocity_coefficient     = 0;
@@ -509,9 +509,15 @@ namespace coshell::model
     for (auto &force : forces_)
       force = 0;
     Vector<double> unused(model_.n_dofs());
-    assemble([](const Contribution &c)
-             { return c.kind() == ForceKind::inertia; },
-             at, &unused, &mass);
+    const auto     inertia = [](const Contribution &c)
+    { return c.kind() == ForceKind::inertia; };
+    if (mass.distributed())
+    {
+      assemble(inertia, at, &unused, &mass.trilinos());
+      mass.trilinos().compress(VectorOperation::add);
+    }
+    else
+      assemble(inertia, at, &unused, &mass.serial());
   }
 
   double ShellProblem::converged_force_scale() const

@@ -289,8 +289,9 @@ namespace coshell::solvers
   {
     problem.acceleration() = 0;
     problem.set_rate_coefficients(0, 0);
-    Vector<double>       residual(problem.sparsity().n_rows());
-    SparseMatrix<double> mass(problem.sparsity());
+    Vector<double> residual(problem.sparsity().n_rows());
+    TangentMatrix  mass;
+    problem.reinit_tangent(mass);
     problem.evaluate(residual, nullptr);
     problem.mass_matrix(mass);
     linear_solver.factorize(mass, true);

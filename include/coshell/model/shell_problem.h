@@ -93,7 +93,7 @@ namespace coshell::model
     dealii::Vector<double> &acceleration() override;
     void set_rate_coefficients(double acceleration_coefficient,
                                double velocity_coefficient) override;
-    void mass_matrix(dealii::SparseMatrix<double> &mass) override;
+    void mass_matrix(solvers::TangentMatrix &mass) override;
 
     /// Wall-clock seconds spent in evaluate() so far (assembly).
     double assembly_seconds() const;

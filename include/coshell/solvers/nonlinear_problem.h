@@ -152,7 +152,8 @@ namespace coshell::solvers
     virtual void set_rate_coefficients(double acceleration_coefficient,
                                        double velocity_coefficient) = 0;
     /// The mass matrix (inertia tangent with unit acceleration
-    /// coefficient), condensed, to find a consistent initial acceleration.
-    virtual void mass_matrix(dealii::SparseMatrix<double> &mass) = 0;
+    /// coefficient), condensed, to find a consistent initial acceleration;
+    /// 'mass' comes from reinit_tangent() (distributed like the tangent).
+    virtual void mass_matrix(TangentMatrix &mass) = 0;
   };
 } // namespace coshell::solvers
