@@ -8,7 +8,6 @@ namespace coshell::solvers
 
   void TangentMatrix::reinit(const SparsityPattern &pattern)
   {
-    serial_pattern_   = &pattern;
     trilinos_pattern_ = nullptr;
     trilinos_.reset();
     serial_.reinit(pattern);
@@ -16,7 +15,6 @@ namespace coshell::solvers
 
   void TangentMatrix::reinit(const TrilinosWrappers::SparsityPattern &pattern)
   {
-    serial_pattern_   = nullptr;
     trilinos_pattern_ = &pattern;
     serial_.clear();
     trilinos_.reset();

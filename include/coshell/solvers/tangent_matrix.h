@@ -38,7 +38,7 @@ namespace coshell::solvers
     dealii::TrilinosWrappers::SparseMatrix take_trilinos();
 
   private:
-    const dealii::SparsityPattern                   *serial_pattern_ = nullptr;
+    /// Set while distributed: a taken matrix is rebuilt on it.
     const dealii::TrilinosWrappers::SparsityPattern *trilinos_pattern_ =
         nullptr;
     dealii::SparseMatrix<double> serial_;
