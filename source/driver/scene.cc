@@ -119,6 +119,7 @@ namespace coshell::driver
     model::QuantitiesOfInterest::declare_parameters(prm);
     solvers::LinearSolver::declare_parameters(prm);
     solvers::PathFollowing::declare_parameters(prm);
+    model::CorrectionLimits::declare_parameters(prm);
     model::PrescribedMotions::declare_parameters(prm);
     model::InertiaParameters::declare_parameters(prm);
     contact::ContactParameters::declare_parameters(prm);
@@ -175,6 +176,7 @@ namespace coshell::driver
     quantities_.parse_parameters(prm);
     linear_solver_.parse_parameters(prm);
     path_following_.parse_parameters(prm);
+    correction_limits_.parse_parameters(prm);
     prm.enter_subsection("Analysis");
     analysis_type_ = prm.get("Type");
     prm.leave_subsection();
@@ -922,6 +924,7 @@ namespace coshell::driver
                                   std::move(contributions),
                                   motions_.increments(model, stage.motions));
       problem.set_schedule({start_time, stage.duration, stage.load_factor});
+      problem.set_correction_limits(correction_limits_);
       linear_solver_.check_applicable(non_symmetric_reason(problem));
       if (restart_ && restart_->stage == stage.number)
         problem.set_converged_force_scale(restart_->converged_force_scale);

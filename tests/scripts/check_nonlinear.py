@@ -116,6 +116,10 @@ def main():
     parser.add_argument("--min-order", type=float)
     parser.add_argument("--min-correction-order", type=float)
     parser.add_argument("--max-iterations", type=int)
+    parser.add_argument("--max-total-iterations", type=int,
+                        help="bound on every Newton correction of the run, "
+                             "failed attempts included (a regression "
+                             "guard on a measured count)")
     parser.add_argument("--limit-point", action="store_true")
     parser.add_argument("--monotone")
     parser.add_argument("--minimum", nargs=3, action="append", default=[])
@@ -170,6 +174,13 @@ def main():
         print(f"most Newton iterations in a step: {worst} (limit {args.max_iterations})")
         if worst > args.max_iterations:
             failures.append("too many iterations")
+    if args.max_total_iterations is not None:
+        checks += 1
+        total = sum(1 for r in history if float(r["correction_norm"]) != 0)
+        print(f"Newton corrections in the run, failed attempts included: "
+              f"{total} (limit {args.max_total_iterations})")
+        if total > args.max_total_iterations:
+            failures.append("too many Newton iterations in the run")
     if args.min_steps is not None:
         checks += 1
         print(f"converged steps: {len(rows)} (required >= {args.min_steps})")

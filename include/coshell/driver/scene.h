@@ -78,6 +78,7 @@ namespace coshell::driver
     model::QuantitiesOfInterest quantities_;
     solvers::LinearSolver       linear_solver_;
     solvers::PathFollowing      path_following_;
+    model::CorrectionLimits     correction_limits_;
     std::string                 analysis_type_ = "linear static";
     model::PrescribedMotions    motions_;
     Stages                      stages_;

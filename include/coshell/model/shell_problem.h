@@ -5,6 +5,7 @@
 #include <coshell/model/shell_state.h>
 #include <coshell/solvers/nonlinear_problem.h>
 
+#include <deal.II/base/parameter_handler.h>
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/sparsity_pattern.h>
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
@@ -25,6 +26,20 @@ namespace coshell::model
   /// their values at 'time'.
   using PrescribedIncrementFunction = std::function<void(
       double time, const ShellState &state, PrescribedIncrements &increments)>;
+
+  /// Bounds on one Newton correction of the shell (prm subsection
+  /// "Nonlinear solver", declared here because only the shell knows which
+  /// unknowns are rotations). A correction that would turn some vertex by
+  /// more than the bound is scaled down, translations with it, as the
+  /// contact filter scales it: a trust region on the rotations.
+  struct CorrectionLimits
+  {
+    /// rad; 0: no bound.
+    double largest_rotation = 0;
+
+    static void declare_parameters(dealii::ParameterHandler &prm);
+    void        parse_parameters(dealii::ParameterHandler &prm);
+  };
 
   /// The shell as a nonlinear problem: the configuration, the constraints
   /// (supports and prescribed motions) and the sum of the active
@@ -51,6 +66,7 @@ namespace coshell::model
       { return s; };
     };
     void set_schedule(const Schedule &schedule);
+    void set_correction_limits(const CorrectionLimits &limits);
     /// Dynamics: the load factor at time t (defaults to the schedule's).
     double time() const;
     double load_factor() const;
@@ -143,11 +159,15 @@ namespace coshell::model
     std::vector<std::array<unsigned int, 2>> gathered_couplings_;
     mutable dealii::FullMatrix<double>       trimmed_;
     bool                                     couples_beyond_cells_ = false;
-    const dealii::FullMatrix<double>          &
+    const dealii::FullMatrix<double>                  &
     within_pattern(const DofBlock &block) const;
-    Schedule schedule_;
-    double   time_ = 0, load_factor_ = 0;
-    double   acceleration_coefficient_ = 0, velocity_coefficient_ = 0;
+    Schedule         schedule_;
+    CorrectionLimits correction_limits_;
+    /// The largest fraction of 'correction' within correction_limits_.
+    double
+    rotation_limit_fraction(const dealii::Vector<double> &correction) const;
+    double time_ = 0, load_factor_ = 0;
+    double acceleration_coefficient_ = 0, velocity_coefficient_ = 0;
     std::array<dealii::Vector<double>, n_force_kinds> forces_;
     /// On several ranks: this rank's share of the cell forces by kind.
     std::array<dealii::Vector<double>, n_force_kinds> rank_forces_;
