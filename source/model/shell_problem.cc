@@ -55,10 +55,12 @@ namespace coshell::model
     prm.declare_entry(
         "Largest rotation per correction", "0", Patterns::Double(0),
         "rad; 0 = no bound. A Newton correction that would turn some vertex "
-        "by more than this is scaled down, translations with it, before the "
-        "contact filter and the line search see it. A trust region for "
-        "first steps whose linear predictor is far off (the slit annular "
-        "plate: 1.8x fewer iterations at 0.05); it costs iterations where "
+        "by more than this is scaled down to it, translations with it (the "
+        "contact filter's fraction, if smaller, is taken instead; the line "
+        "search works on the scaled correction). Load control and time "
+        "steps, not the arc-length corrector. A trust region for first "
+        "steps whose linear predictor is far off (the slit annular plate: "
+        "1.8x fewer Newton corrections at 0.05); it costs iterations where "
         "large rotations are right (an end moment rolling a strip up).");
     prm.leave_subsection();
   }
