@@ -688,6 +688,8 @@ namespace coshell::driver
       out.history.row({double(step), double(record.iteration),
                        problem.load_factor(), record.relative_residual,
                        record.correction_norm, record.relative_energy});
+      // The converged evaluation reports no correction.
+      result.newton_corrections += record.correction_norm != 0;
     };
     const double solver_before   = linear_solver_.seconds();
     const double assembly_before = problem.assembly_seconds();
@@ -837,6 +839,7 @@ namespace coshell::driver
       out.history.row({double(out.step + 1), double(record.iteration),
                        problem.load_factor(), record.relative_residual,
                        record.correction_norm, record.relative_energy});
+      result.newton_corrections += record.correction_norm != 0;
     };
     const auto   wall            = std::chrono::steady_clock::now();
     const double solver_before   = linear_solver_.seconds();

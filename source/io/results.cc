@@ -55,7 +55,10 @@ namespace coshell::io
     times["output"]   = wall_time_s.output;
     times["total"]    = wall_time_s.total;
     if (load_steps > 0 || steps > 0)
-      json["newton_iterations"] = newton_iterations;
+    {
+      json["newton_iterations"]  = newton_iterations;
+      json["newton_corrections"] = newton_corrections;
+    }
     if (load_steps > 0)
     {
       json["load_steps"] = load_steps;

@@ -25,6 +25,7 @@ Newton history against references given here.
 """
 import argparse
 import csv
+import json
 import math
 import os
 import shutil
@@ -177,8 +178,14 @@ def main():
     if args.max_total_iterations is not None:
         checks += 1
         total = sum(1 for r in history if float(r["correction_norm"]) != 0)
+        with open(os.path.join(args.output, "summary.json")) as f:
+            reported = json.load(f)["newton_corrections"]
         print(f"Newton corrections in the run, failed attempts included: "
-              f"{total} (limit {args.max_total_iterations})")
+              f"{total} (summary.json: {reported}; limit "
+              f"{args.max_total_iterations})")
+        if reported != total:
+            failures.append("summary.json's newton_corrections differs from "
+                            "newton_history.csv")
         if total > args.max_total_iterations:
             failures.append("too many Newton iterations in the run")
     if args.min_steps is not None:

@@ -32,6 +32,9 @@ namespace coshell::io
     unsigned int factorizations = 0, reused_factor_solves = 0;
     PhaseTimes   wall_time_s;
     unsigned int load_steps = 0, newton_iterations = 0;
+    /// Every Newton correction solved, those of failed attempts (steps
+    /// later cut) included; newton_iterations counts converged steps only.
+    unsigned int newton_corrections = 0;
     /// Dynamics: time steps, simulated time (s) and the wall time the time
     /// stepping took (s), whose ratio is the real-time factor.
     unsigned int steps            = 0;
