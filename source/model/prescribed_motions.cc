@@ -205,8 +205,7 @@ namespace coshell::model
             continue;
           const Tensor<1, 3> spin =
               finite ? element::rotation_log(R * transpose(state.rotation(v)))
-                     : theta - Tensor<1, 3>({values[dofs[rx]], values[dofs[ry]],
-                                             values[dofs[rz]]});
+                     : theta - vertex_block(values, dofs, rx);
           for (unsigned int c = 0; c < 3; ++c)
             increments.emplace_back(dofs[rx + c], spin[c]);
         }

@@ -403,10 +403,9 @@ namespace coshell::model
     for (unsigned int v = 0; v < model_.surface().n_vertices(); ++v)
       if (model_.vertex_is_used(v))
       {
-        const VertexDofs &dofs = model_.vertex_dofs(v);
-        largest = std::max(largest, std::hypot(correction[dofs[rx]],
-                                               correction[dofs[ry]],
-                                               correction[dofs[rz]]));
+        largest = std::max(
+            largest,
+            vertex_block(correction, model_.vertex_dofs(v), rx).norm());
       }
     return largest > bound ? bound / largest : 1;
   }

@@ -16,15 +16,6 @@ namespace coshell::model
         one[d][d] = 1;
       return one;
     }
-
-    Tensor<1, 3>
-    block(const Vector<double> &v, const VertexDofs &dofs, unsigned int first)
-    {
-      Tensor<1, 3> x;
-      for (unsigned int d = 0; d < 3; ++d)
-        x[d] = v[dofs[first + d]];
-      return x;
-    }
   } // namespace
 
   ShellState::ShellState(const ShellModel &model, bool finite_rotations)
@@ -58,7 +49,8 @@ namespace coshell::model
         for (unsigned int d = 0; d < 3; ++d)
           values_[dofs[ux + d]] += increment[dofs[ux + d]];
         rotations_[v] =
-            element::rotation_exp(block(increment, dofs, rx)) * rotations_[v];
+            element::rotation_exp(vertex_block(increment, dofs, rx)) *
+            rotations_[v];
         store_rotation_vector(v);
       }
   }
@@ -96,9 +88,10 @@ namespace coshell::model
       if (model_->vertex_is_used(v))
       {
         const VertexDofs  &dofs = model_->vertex_dofs(v);
-        const Tensor<1, 3> q_u =
-            element::so3_left_jacobian_inverse(block(increment, dofs, rx)) *
-            (transpose(saved_rotations_[v]) * block(increment, dofs, ux));
+        const Tensor<1, 3> q_u  = element::so3_left_jacobian_inverse(
+                                      vertex_block(increment, dofs, rx)) *
+                                 (transpose(saved_rotations_[v]) *
+                                  vertex_block(increment, dofs, ux));
         for (unsigned int d = 0; d < 3; ++d)
           increment[dofs[ux + d]] = q_u[d];
       }
@@ -117,8 +110,8 @@ namespace coshell::model
         const VertexDofs  &dofs = model_->vertex_dofs(v);
         const Tensor<1, 3> dx =
             saved_rotations_[v] *
-            (element::so3_left_jacobian(block(increment, dofs, rx)) *
-             block(increment, dofs, ux));
+            (element::so3_left_jacobian(vertex_block(increment, dofs, rx)) *
+             vertex_block(increment, dofs, ux));
         for (unsigned int d = 0; d < 3; ++d)
           displacement[dofs[ux + d]] = dx[d];
       }

@@ -5,6 +5,7 @@
 #include <coshell/model/element_parameters.h>
 
 #include <deal.II/base/index_set.h>
+#include <deal.II/base/tensor.h>
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/fe_system.h>
 #include <deal.II/lac/affine_constraints.h>
@@ -40,6 +41,18 @@ namespace coshell::model
 
   /// The six global DoF indices of one mesh vertex.
   using VertexDofs = std::array<global_dof_index, dofs_per_vertex>;
+
+  /// The vertex's three entries of 'v' from component 'first' (ux or rx)
+  /// on, as a vector.
+  inline dealii::Tensor<1, 3> vertex_block(const dealii::Vector<double> &v,
+                                           const VertexDofs             &dofs,
+                                           unsigned int                  first)
+  {
+    dealii::Tensor<1, 3> x;
+    for (unsigned int d = 0; d < 3; ++d)
+      x[d] = v[dofs[first + d]];
+    return x;
+  }
 
   /// Discretization of a flat-facet shell: FESystem(FE_SimplexP(1), 6) on
   /// the surface, oriented cell normals, and the element kernels. Knows

@@ -163,11 +163,8 @@ namespace coshell::model
     within_pattern(const DofBlock &block) const;
     Schedule         schedule_;
     CorrectionLimits correction_limits_;
-    /// The largest fraction of 'correction' within correction_limits_.
-    double
-    rotation_limit_fraction(const dealii::Vector<double> &correction) const;
-    double time_ = 0, load_factor_ = 0;
-    double acceleration_coefficient_ = 0, velocity_coefficient_ = 0;
+    double           time_ = 0, load_factor_ = 0;
+    double           acceleration_coefficient_ = 0, velocity_coefficient_ = 0;
     std::array<dealii::Vector<double>, n_force_kinds> forces_;
     /// On several ranks: this rank's share of the cell forces by kind.
     std::array<dealii::Vector<double>, n_force_kinds> rank_forces_;
@@ -179,8 +176,11 @@ namespace coshell::model
     dealii::Vector<double> global_force_, one_global_force_;
 
     EvaluationPoint point() const;
-    double          current_force_scale() const;
-    void            update_inhomogeneities();
+    /// The largest fraction of 'correction' within correction_limits_.
+    double
+    rotation_limit_fraction(const dealii::Vector<double> &correction) const;
+    double current_force_scale() const;
+    void   update_inhomogeneities();
     /// Adds the blocks of the contributions (contact pairs). Every rank
     /// finds the same blocks; a distributed tangent takes each row from the
     /// rank that owns it (solvers::RowsOf).
