@@ -139,8 +139,8 @@ namespace coshell::model
       if (model_->vertex_is_used(v))
       {
         rotations_[v] = saved_rotations_[v] *
-                        element::rotation_exp(
-                            block(displacement, model_->vertex_dofs(v), rx));
+                        element::rotation_exp(vertex_block(
+                            displacement, model_->vertex_dofs(v), rx));
         store_rotation_vector(v);
       }
   }
@@ -163,7 +163,8 @@ namespace coshell::model
   {
     const VertexDofs &dofs = model_->vertex_dofs(v);
     return transpose(saved_rotations_[v]) *
-           (block(values_, dofs, ux) - block(saved_values_, dofs, ux));
+           (vertex_block(values_, dofs, ux) -
+            vertex_block(saved_values_, dofs, ux));
   }
 
   Tensor<2, 3> ShellState::step_translation_jacobian(unsigned int v) const
