@@ -386,11 +386,12 @@ namespace coshell::driver
                          const model::Loads          &loads,
                          model::Formulation           kinematics,
                          element::CorotationalTangent tangent,
+                         bool                         extrapolated_forces,
                          std::ostream                &log)
     {
       std::vector<std::unique_ptr<model::Contribution>> contributions;
-      contributions.push_back(
-          std::make_unique<model::InternalForce>(model, kinematics, tangent));
+      contributions.push_back(std::make_unique<model::InternalForce>(
+          model, kinematics, tangent, extrapolated_forces));
       contributions.push_back(std::make_unique<model::ExternalLoads>(
           model, loads, kinematics == model::Formulation::corotational, log));
       return contributions;
@@ -915,9 +916,11 @@ namespace coshell::driver
       if (stages_.staged())
         log << stage.name() << ", t = " << start_time << " .. "
             << start_time + stage.duration << " s\n";
-      auto contributions = static_contributions(
-          model, loads_, element_.formulation, path_following_.tangent(), log);
-      if (stage.analysis == "dynamic")
+      const bool dynamic       = stage.analysis == "dynamic";
+      auto       contributions = static_contributions(
+                model, loads_, element_.formulation, path_following_.tangent(),
+                path_following_.extrapolated_geometric_stiffness(dynamic), log);
+      if (dynamic)
         contributions.push_back(std::make_unique<model::Inertia>(
             model, inertia_, time_integration_.se3()));
       if (contact)
@@ -933,7 +936,7 @@ namespace coshell::driver
         problem.set_converged_force_scale(restart_->converged_force_scale);
       result.wall_time_s.setup += seconds_since(phase);
       phase = std::chrono::steady_clock::now();
-      if (stage.analysis == "dynamic")
+      if (dynamic)
         run_dynamic_stage(stage, problem, start_time, out, result, directory,
                           log);
       else

@@ -890,11 +890,14 @@ namespace coshell::element
     return 0.5 * stiffness.matrix_norm_square(d);
   }
 
-  void CorotationalShell::internal_force(const SpatialTriangle &current,
-                                         const NodalRotations  &rotations,
-                                         CorotationalTangent    tangent_type,
-                                         ShellDisplacements    &force,
-                                         FullMatrix<double>    *tangent) const
+  void CorotationalShell::internal_force(
+      const SpatialTriangle     &current,
+      const NodalRotations      &rotations,
+      CorotationalTangent        tangent_type,
+      ShellDisplacements        &force,
+      FullMatrix<double>        *tangent,
+      const ShellDisplacements  *geometric_dofs,
+      CorotationalLinearization *linearization) const
   {
     if (tangent != nullptr && tangent_type != CorotationalTangent::paper)
     {
@@ -903,15 +906,28 @@ namespace coshell::element
       const CorotatedKinematics<2> jets(reference, current, rotations);
       Matrix18                     j;
       jets.jacobian(j);
-      const ShellDisplacements g = local_force(stiffness, jets.dofs());
+      const ShellDisplacements d = jets.dofs();
+      const ShellDisplacements g = local_force(stiffness, d);
       force                      = jacobian_transpose_times(j, g);
       Matrix18 k;
       congruence(stiffness, j, k);
-      jets.add_weighted_hessian(g, k);
-      add_rotation_update_term(force, k);
+      if (geometric_dofs == nullptr)
+      {
+        jets.add_weighted_hessian(g, k);
+        add_rotation_update_term(force, k);
+      }
+      else
+      {
+        const ShellDisplacements g_geometric =
+            local_force(stiffness, *geometric_dofs);
+        jets.add_weighted_hessian(g_geometric, k);
+        add_rotation_update_term(jacobian_transpose_times(j, g_geometric), k);
+      }
       if (tangent_type == CorotationalTangent::symmetric)
         symmetrize(k);
       copy_to(k, *tangent);
+      if (linearization != nullptr)
+        *linearization = {d, j};
       return;
     }
 

@@ -17,8 +17,12 @@ namespace coshell::model
 
   InternalForce::InternalForce(const ShellModel            &model,
                                Formulation                  kinematics,
-                               element::CorotationalTangent tangent)
-      : model_(model), kinematics_(kinematics), tangent_(tangent)
+                               element::CorotationalTangent tangent,
+                               bool                         extrapolated_forces)
+      : model_(model), kinematics_(kinematics), tangent_(tangent),
+        extrapolate_(extrapolated_forces &&
+                     kinematics == Formulation::corotational &&
+                     tangent != element::CorotationalTangent::paper)
   {
     if (kinematics_ != Formulation::corotational)
       return;
@@ -26,6 +30,24 @@ namespace coshell::model
     for (const auto &cell : model.dof_handler().active_cell_iterators())
       corotational_.emplace_back(model.triangle(cell), model.material(cell),
                                  model.element_options(cell));
+    if (extrapolate_)
+      history_.resize(corotational_.size());
+  }
+
+  void InternalForce::begin_solve()
+  {
+    forget_history();
+  }
+
+  void InternalForce::restore()
+  {
+    forget_history();
+  }
+
+  void InternalForce::forget_history()
+  {
+    for (auto &h : history_)
+      h.valid = false;
   }
 
   std::string InternalForce::name() const
@@ -76,12 +98,87 @@ namespace coshell::model
         contribution.matrix.add(1.0, stiffness);
       return;
     }
+    add_corotational_cell(cell, point, contribution, with_tangent);
+  }
+
+  namespace
+  {
+    bool same_configuration(const element::SpatialTriangle &x,
+                            const element::NodalRotations  &r,
+                            const element::SpatialTriangle &y,
+                            const element::NodalRotations  &s)
+    {
+      for (unsigned int v = 0; v < 3; ++v)
+        if (x[v] != y[v] || r[v] != s[v])
+          return false;
+      return true;
+    }
+
+    /// d + J dp, dp the perturbation (translations, spatial rotation
+    /// vectors R_new R_old^T) from the old configuration to the new one.
+    element::ShellDisplacements
+    extrapolate(const element::CorotationalLinearization &old_linearization,
+                const element::SpatialTriangle           &old_triangle,
+                const element::NodalRotations            &old_rotations,
+                const element::SpatialTriangle           &triangle,
+                const element::NodalRotations            &rotations)
+    {
+      element::ShellDisplacements dp;
+      for (unsigned int v = 0; v < 3; ++v)
+      {
+        const Tensor<1, 3> spin =
+            element::rotation_log(rotations[v] * transpose(old_rotations[v]));
+        for (unsigned int c = 0; c < 3; ++c)
+        {
+          dp[6 * v + c]     = triangle[v][c] - old_triangle[v][c];
+          dp[6 * v + 3 + c] = spin[c];
+        }
+      }
+      element::ShellDisplacements d = old_linearization.dofs;
+      for (unsigned int a = 0; a < element::shell_dofs; ++a)
+        for (unsigned int b = 0; b < element::shell_dofs; ++b)
+          d[a] += old_linearization.jacobian[a][b] * dp[b];
+      return d;
+    }
+  } // namespace
+
+  void InternalForce::add_corotational_cell(const CellIterator    &cell,
+                                            const EvaluationPoint &point,
+                                            CellContribution      &contribution,
+                                            bool with_tangent) const
+  {
+    const unsigned int index     = cell->active_cell_index();
+    const auto         triangle  = current_triangle(model_, cell, point.state);
+    const auto         rotations = nodal_rotations(cell, point.state);
     element::ShellDisplacements force;
     FullMatrix<double>          tangent;
-    corotational_[cell->active_cell_index()].internal_force(
-        current_triangle(model_, cell, point.state),
-        nodal_rotations(cell, point.state), tangent_, force,
-        with_tangent ? &tangent : nullptr);
+    if (!with_tangent || !extrapolate_)
+      corotational_[index].internal_force(triangle, rotations, tangent_, force,
+                                          with_tangent ? &tangent : nullptr);
+    else
+    {
+      TangentHistory                    &h = history_[index];
+      element::ShellDisplacements        geometric;
+      element::CorotationalLinearization linearization;
+      const bool same = h.valid && same_configuration(h.triangle, h.rotations,
+                                                      triangle, rotations);
+      if (same)
+        geometric = h.geometric_dofs;
+      else if (h.valid)
+        geometric = extrapolate(h.linearization, h.triangle, h.rotations,
+                                triangle, rotations);
+      corotational_[index].internal_force(
+          triangle, rotations, tangent_, force, &tangent,
+          h.valid ? &geometric : nullptr, &linearization);
+      if (!same)
+      {
+        h.geometric_dofs = h.valid ? geometric : linearization.dofs;
+        h.valid          = true;
+        h.triangle       = triangle;
+        h.rotations      = rotations;
+        h.linearization  = linearization;
+      }
+    }
     for (unsigned int i = 0; i < element::shell_dofs; ++i)
       contribution.vector[i] -= force[i];
     if (with_tangent)

@@ -122,7 +122,10 @@ namespace coshell::model
     std::vector<std::array<unsigned int, 2>> couplings;
     const EvaluationPoint                    at = point();
     for (const auto &contribution : contributions_)
+    {
+      contribution->begin_solve();
       contribution->coupled_vertices(at, couplings);
+    }
     // Contact keeps its list while the shell moves little: the same list
     // needs no sort.
     if (couplings == gathered_couplings_)

@@ -27,6 +27,22 @@ namespace coshell::solvers
                       "cholmod, which falls back to UMFPACK where the "
                       "matrix is not positive definite); paper: the "
                       "approximation R K R^T of Comas et al. 2010.");
+    prm.declare_entry(
+        "Geometric stiffness", "auto",
+        Patterns::Selection("auto|current forces|extrapolated forces"),
+        "Which local forces of each co-rotational element drive the "
+        "terms of the tangent that are linear in them (the geometric "
+        "stiffness and the rotation-update term). current forces: those "
+        "of the current iterate, the exact derivative of the residual. "
+        "extrapolated forces: K_l (d + J dp), the local forces of the "
+        "previous iterate carried along that iterate's linearization to "
+        "the current one, as in the mixed-integration-point Newton of "
+        "Magisano, Leonetti & Garcea (2017): the same solution, the same "
+        "residual, far fewer iterations on thin shells, where a "
+        "correction's spurious membrane forces spoil the next tangent. "
+        "auto: extrapolated forces in static analyses, current forces in "
+        "dynamic ones (measured: doc/performance.md, \"Extrapolated "
+        "forces in the geometric stiffness\").");
     prm.declare_entry("Load steps", "10", Patterns::Integer(1),
                       "Initial number of equal increments of the path "
                       "parameter from 0 to 1 (dimensionless; arc length: "
@@ -59,15 +75,16 @@ namespace coshell::solvers
     prm.enter_subsection("Nonlinear solver");
     method_                   = prm.get("Method");
     const std::string tangent = prm.get("Tangent");
-    tangent_         = tangent == "paper" ? element::CorotationalTangent::paper
-                       : tangent == "symmetric"
-                           ? element::CorotationalTangent::symmetric
-                           : element::CorotationalTangent::consistent;
-    load_steps_      = prm.get_integer("Load steps");
-    max_step_cuts_   = prm.get_integer("Maximum step cuts");
-    easy_iterations_ = prm.get_integer("Easy step iterations");
-    growth_factor_   = prm.get_double("Step growth factor");
-    cut_factor_      = prm.get_double("Step cut factor");
+    tangent_ = tangent == "paper" ? element::CorotationalTangent::paper
+               : tangent == "symmetric"
+                   ? element::CorotationalTangent::symmetric
+                   : element::CorotationalTangent::consistent;
+    geometric_stiffness_  = prm.get("Geometric stiffness");
+    load_steps_           = prm.get_integer("Load steps");
+    max_step_cuts_        = prm.get_integer("Maximum step cuts");
+    easy_iterations_      = prm.get_integer("Easy step iterations");
+    growth_factor_        = prm.get_double("Step growth factor");
+    cut_factor_           = prm.get_double("Step cut factor");
     max_arc_length_steps_ = prm.get_integer("Maximum arc-length steps");
     max_load_factor_      = prm.get_double("Maximum load factor");
     newton_.parse_parameters(prm);
@@ -77,6 +94,13 @@ namespace coshell::solvers
   element::CorotationalTangent PathFollowing::tangent() const
   {
     return tangent_;
+  }
+
+  bool PathFollowing::extrapolated_geometric_stiffness(bool dynamic) const
+  {
+    if (geometric_stiffness_ == "auto")
+      return !dynamic;
+    return geometric_stiffness_ == "extrapolated forces";
   }
 
   const std::string &PathFollowing::method() const

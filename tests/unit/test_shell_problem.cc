@@ -2,9 +2,19 @@
 // (Nonlinear solver/Largest rotation per correction): the fraction it
 // admits is the bound over the largest vertex rotation, translations never
 // limit it, and without a bound every correction passes whole.
+//
+// The co-rotational internal force with extrapolated forces in its
+// geometric stiffness (Nonlinear solver/Geometric stiffness): the same
+// residual, a tangent within O(|dp|^2) of the exact one after a correction
+// dp, and the exact tangent again after restore().
 
 #include <coshell/mesh/mesh.h>
+#include <coshell/model/internal_force.h>
 #include <coshell/model/shell_problem.h>
+
+#include <deal.II/lac/full_matrix.h>
+
+#include <cmath>
 
 #include <gtest/gtest.h>
 
@@ -12,8 +22,8 @@ using namespace coshell;
 
 namespace
 {
-  /// A 2 x 2 crossed plate with no contributions and no constraints.
-  struct BarePlate
+  /// A 2 x 2 crossed plate, its model and state, and no constraints.
+  struct PlateMesh
   {
     mesh::Surface surface;
     // Members are built in order: the mesh before the model on it.
@@ -25,7 +35,6 @@ namespace
                                   dealii::Tensor<1, 3>({0, 0, 1})};
     model::ShellState                 state{model, true};
     dealii::AffineConstraints<double> constraints = closed();
-    model::ShellProblem               problem{model, state, constraints, {}};
 
     static dealii::AffineConstraints<double> closed()
     {
@@ -33,6 +42,12 @@ namespace
       constraints.close();
       return constraints;
     }
+  };
+
+  /// The plate with no contributions.
+  struct BarePlate : PlateMesh
+  {
+    model::ShellProblem problem{model, state, constraints, {}};
   };
 } // namespace
 
@@ -59,4 +74,101 @@ TEST(ShellProblem, BoundsTheLargestRotationOfACorrection)
   correction[turned[model::rz]] = 0;
   plate.problem.set_correction_limits({0.01});
   EXPECT_NEAR(plate.problem.admissible_fraction(correction), 0.2, 1e-15);
+}
+
+namespace
+{
+  /// The plate whose one contribution is the co-rotational internal
+  /// force, deformed by a pattern of up to 0.1 (rad and length units, the
+  /// plate being 2 x 2) on every DoF and evaluated there; step() moves it
+  /// on along another pattern.
+  struct ElasticPlate : PlateMesh
+  {
+    model::ShellProblem    problem;
+    solvers::TangentMatrix tangent;
+    dealii::Vector<double> residual;
+
+    explicit ElasticPlate(bool extrapolated)
+        : problem(model, state, constraints, internal_force(extrapolated))
+    {
+      problem.reinit_tangent(tangent);
+      residual.reinit(model.n_dofs());
+      problem.apply_increment(pattern(0.1, 1.7));
+      problem.save();
+      evaluate();
+    }
+
+    std::vector<std::unique_ptr<model::Contribution>>
+    internal_force(bool extrapolated) const
+    {
+      std::vector<std::unique_ptr<model::Contribution>> contributions;
+      contributions.push_back(std::make_unique<model::InternalForce>(
+          model, model::Formulation::corotational,
+          element::CorotationalTangent::consistent, extrapolated));
+      return contributions;
+    }
+
+    dealii::Vector<double> pattern(double size, double frequency) const
+    {
+      dealii::Vector<double> v(model.n_dofs());
+      for (unsigned int k = 0; k < v.size(); ++k)
+        v[k] = size * std::sin(frequency * (k + 1));
+      return v;
+    }
+
+    dealii::FullMatrix<double> evaluate()
+    {
+      tangent.zero();
+      problem.evaluate(residual, &tangent);
+      dealii::FullMatrix<double> full;
+      full.copy_from(tangent.serial());
+      return full;
+    }
+
+    dealii::FullMatrix<double> step(double size)
+    {
+      problem.apply_increment(pattern(size, 2.3));
+      return evaluate();
+    }
+  };
+
+  double difference(const dealii::FullMatrix<double> &a,
+                    dealii::FullMatrix<double>        b)
+  {
+    b.add(-1.0, a);
+    return b.frobenius_norm() / a.frobenius_norm();
+  }
+} // namespace
+
+TEST(InternalForce, ExtrapolatedForcesTangentIsExactToSecondOrder)
+{
+  const std::array<double, 2> sizes = {{0.002, 0.001}};
+  std::array<double, 2>       differences;
+  for (unsigned int i = 0; i < 2; ++i)
+  {
+    const double size = sizes[i];
+    ElasticPlate exact(false), extrapolated(true);
+    const auto   exact_tangent = exact.step(size);
+    const auto   tangent       = extrapolated.step(size);
+    // The force is the exact one either way.
+    dealii::Vector<double> residual_difference = extrapolated.residual;
+    residual_difference -= exact.residual;
+    EXPECT_EQ(residual_difference.linfty_norm(), 0);
+    differences[i] = difference(exact_tangent, tangent);
+    // The same configuration again: the same extrapolation, not the
+    // exact tangent.
+    EXPECT_EQ(difference(tangent, extrapolated.evaluate()), 0);
+  }
+  // Not the exact tangent, but off by O(|dp|^2): a mismatch of the
+  // rotation convention between J and dp would leave O(|dp|).
+  EXPECT_GT(differences[1], 1e-8);
+  EXPECT_NEAR(differences[0] / differences[1], 4.0, 0.2);
+}
+
+TEST(InternalForce, ExtrapolationIsForgottenOnRestore)
+{
+  ElasticPlate exact(false), extrapolated(true);
+  extrapolated.step(0.01);
+  extrapolated.problem.restore();
+  EXPECT_EQ(difference(exact.evaluate(), extrapolated.evaluate()), 0);
 }

@@ -41,6 +41,15 @@ namespace coshell::element
     std::array<std::array<double, 2>, 2> inverse_edges;
   };
 
+  /// The deformational DOFs d of one configuration and their Jacobian
+  /// J = dd/dp (row-major): enough to extrapolate d linearly to a nearby
+  /// configuration, d + J dp.
+  struct CorotationalLinearization
+  {
+    ShellDisplacements                                     dofs{};
+    std::array<std::array<double, shell_dofs>, shell_dofs> jacobian{};
+  };
+
   class CorotationalShell
   {
   public:
@@ -68,11 +77,20 @@ namespace coshell::element
     /// is resized to 18x18 and set to K_ab = d f_a / d p_b under that same
     /// update (consistent) or to T K_l T^T with T = diag(E, ..., E) built
     /// from the current frame E (paper).
-    void internal_force(const SpatialTriangle &current,
-                        const NodalRotations  &rotations,
-                        CorotationalTangent    tangent_type,
-                        ShellDisplacements    &force,
-                        FullMatrix<double>    *tangent) const;
+    ///
+    /// For the consistent and symmetric tangents: if 'geometric_dofs' is
+    /// given, the terms of the tangent that are linear in the local force
+    /// g = K_l d (the geometric stiffness and the rotation-update term) use
+    /// K_l times those DOFs instead of the current d; the force does not
+    /// change. If 'linearization' is given, it receives d and J here.
+    void
+    internal_force(const SpatialTriangle     &current,
+                   const NodalRotations      &rotations,
+                   CorotationalTangent        tangent_type,
+                   ShellDisplacements        &force,
+                   FullMatrix<double>        *tangent,
+                   const ShellDisplacements  *geometric_dofs = nullptr,
+                   CorotationalLinearization *linearization  = nullptr) const;
 
     /// Membrane forces and bending moments of the deformational DoFs, on
     /// the initial shape; the global tensors use the current frame axes.

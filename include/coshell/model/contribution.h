@@ -124,6 +124,8 @@ namespace coshell::model
     {
       return 1;
     }
+    /// Called at the start of every Newton solve (a load or time step).
+    virtual void begin_solve() {}
     /// Keep and go back to internal state along with the configuration.
     virtual void save() {}
     virtual void restore() {}

@@ -15,9 +15,18 @@ namespace coshell::model
   class InternalForce : public Contribution
   {
   public:
+    /// With 'extrapolated_forces' (co-rotational only), the geometric
+    /// terms of a cell's tangent use its local forces extrapolated from its
+    /// previous tangent evaluation: K_l (d + J dp), where d and J = dd/dp
+    /// were that evaluation's and dp leads from its configuration to the
+    /// current one (Magisano, Leonetti & Garcea 2017). The force is exact
+    /// either way. begin_solve() and restore() forget the previous
+    /// evaluations: a step starts from the exact forces, so that a run
+    /// restarted from a checkpoint takes the uninterrupted run's iterates.
     InternalForce(const ShellModel            &model,
                   Formulation                  kinematics,
-                  element::CorotationalTangent tangent);
+                  element::CorotationalTangent tangent,
+                  bool                         extrapolated_forces = false);
 
     std::string name() const override;
     ForceKind   kind() const override;
@@ -27,6 +36,8 @@ namespace coshell::model
                          CellContribution      &contribution,
                          bool                   with_tangent) const override;
     bool        symmetric_tangent() const override;
+    void        begin_solve() override;
+    void        restore() override;
 
     /// Elastic energy stored in the shell, J (force x length).
     double strain_energy(const ShellState &state) const;
@@ -40,6 +51,26 @@ namespace coshell::model
     Formulation                             kinematics_;
     element::CorotationalTangent            tangent_;
     std::vector<element::CorotationalShell> corotational_;
+
+    /// A cell's configuration at its last tangent evaluation, with the
+    /// linearization there and the deformational DOFs its geometric
+    /// terms used (see extrapolated_dofs()).
+    struct TangentHistory
+    {
+      bool                               valid = false;
+      element::SpatialTriangle           triangle;
+      element::NodalRotations            rotations;
+      element::CorotationalLinearization linearization;
+      element::ShellDisplacements        geometric_dofs{};
+    };
+    bool                                extrapolate_ = false;
+    mutable std::vector<TangentHistory> history_;
+
+    void forget_history();
+    void add_corotational_cell(const CellIterator    &cell,
+                               const EvaluationPoint &point,
+                               CellContribution      &contribution,
+                               bool                   with_tangent) const;
 
     element::NodalRotations nodal_rotations(const CellIterator &cell,
                                             const ShellState   &state) const;

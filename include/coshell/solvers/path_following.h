@@ -43,14 +43,19 @@ namespace coshell::solvers
              std::ostream              &log) const;
 
     element::CorotationalTangent tangent() const;
-    const std::string           &method() const;
-    bool                         arc_length() const;
-    const NewtonParameters      &newton() const;
+    /// Whether the co-rotational tangent's geometric terms use the local
+    /// forces extrapolated from the previous Newton iterate (see
+    /// "Geometric stiffness"), in a dynamic analysis or a static one.
+    bool               extrapolated_geometric_stiffness(bool dynamic) const;
+    const std::string &method() const;
+    bool               arc_length() const;
+    const NewtonParameters &newton() const;
 
   private:
     std::string                  method_ = "load control";
     element::CorotationalTangent tangent_ =
         element::CorotationalTangent::consistent;
+    std::string      geometric_stiffness_  = "auto";
     unsigned int     load_steps_           = 10;
     unsigned int     max_step_cuts_        = 12;
     unsigned int     easy_iterations_      = 6;
