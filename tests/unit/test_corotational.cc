@@ -666,6 +666,72 @@ TEST(CorotationalShell, SymmetricTangentIsTheSymmetricPartOfTheConsistent)
   EXPECT_GT(skew, 1e-8 * largest); // a deformed state: there was a skew part
 }
 
+// The linearization the kernel returns is d and J = dd/dp under the
+// perturbation of 'perturbed': d(p) - (d + J p) is of second order in p,
+// at a state with rotations above 90 degrees.
+TEST(CorotationalShell, LinearizationIsTheDofsAndTheirJacobian)
+{
+  const CorotationalShell   element(initial_triangle, thick_material(),
+                                    with_bending(both_elements[0]));
+  const State               state = random_deformed_state(initial_triangle, 7);
+  FullMatrix<double>        tangent;
+  ShellDisplacements        f;
+  CorotationalLinearization linearization;
+  element.internal_force(state.x, state.rotations,
+                         CorotationalTangent::consistent, f, &tangent, nullptr,
+                         &linearization);
+  EXPECT_EQ(linearization.dofs,
+            element.deformational_dofs(state.x, state.rotations));
+  std::array<double, 2> remainders;
+  for (unsigned int k = 0; k < 2; ++k)
+  {
+    const double step  = k == 0 ? 1e-3 : 5e-4;
+    double       worst = 0;
+    for (unsigned int b = 0; b < shell_dofs; ++b)
+    {
+      const State moved = perturbed(state, b, step);
+      const auto  d     = element.deformational_dofs(moved.x, moved.rotations);
+      for (unsigned int a = 0; a < shell_dofs; ++a)
+        worst = std::max(worst, std::abs(d[a] - linearization.dofs[a] -
+                                         linearization.jacobian[a][b] * step));
+    }
+    remainders[k] = worst;
+  }
+  EXPECT_GT(remainders[1], 0);
+  EXPECT_NEAR(remainders[0] / remainders[1], 4.0, 0.2);
+}
+
+// Geometric terms from given deformational DOFs: with the state's own d the
+// tangent is bit for bit the consistent one; with others only the tangent
+// changes, by K_l times the difference through the geometric terms.
+TEST(CorotationalShell, GeometricDofsChangeOnlyTheGeometricTerms)
+{
+  const CorotationalShell  element(initial_triangle, thick_material(),
+                                   with_bending(both_elements[0]));
+  const State              state = random_deformed_state(initial_triangle, 9);
+  const FullMatrix<double> consistent = consistent_tangent(element, state);
+  const ShellDisplacements own =
+      element.deformational_dofs(state.x, state.rotations);
+  FullMatrix<double> same, other;
+  ShellDisplacements f_same, f_other;
+  element.internal_force(state.x, state.rotations,
+                         CorotationalTangent::consistent, f_same, &same, &own);
+  EXPECT_EQ(relative_difference(same, consistent), 0);
+  EXPECT_EQ(f_same, force(element, state));
+
+  ShellDisplacements zero{};
+  element.internal_force(state.x, state.rotations,
+                         CorotationalTangent::consistent, f_other, &other,
+                         &zero);
+  EXPECT_EQ(f_other, force(element, state));
+  // With zero local forces only J^T K_l J is left: the symmetric material
+  // part, against which the consistent tangent of a deformed state differs.
+  for (unsigned int i = 0; i < shell_dofs; ++i)
+    for (unsigned int j = 0; j < shell_dofs; ++j)
+      EXPECT_NEAR(other(i, j), other(j, i), 1e-12 * other.frobenius_norm());
+  EXPECT_GT(relative_difference(other, consistent), 1e-6);
+}
+
 // The SE(3) exponential's translation part V(theta) = int_0^1 exp(s
 // skew(theta)) ds, by Gauss-Legendre quadrature (independent of the closed
 // form), for small, medium and near-2pi angles; and V V^-1 = I.

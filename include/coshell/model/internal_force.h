@@ -54,7 +54,7 @@ namespace coshell::model
 
     /// A cell's configuration at its last tangent evaluation, with the
     /// linearization there and the deformational DOFs its geometric
-    /// terms used (see extrapolated_dofs()).
+    /// terms used (see add_corotational_cell()).
     struct TangentHistory
     {
       bool                               valid = false;
