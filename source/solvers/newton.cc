@@ -65,6 +65,35 @@ namespace coshell::solvers
     private:
       std::vector<std::pair<bool, bool>> records_;
     };
+
+    /// Whether the coming evaluation will, by the quadratic model, end the
+    /// solve: its tangent would be thrown away, so the residual comes
+    /// first and the tangent only if the residual is not small after all.
+    /// From the relative residuals r0 > r1 before and after a whole
+    /// correction, and a whole correction since: r2 = C r1^2, C = r1 / r0^2.
+    class ConvergencePrediction
+    {
+    public:
+      explicit ConvergencePrediction(double tolerance) : tolerance_(tolerance)
+      {
+      }
+      /// The residual of an iterate that a correction scaled by
+      /// 'whole' ? 1 : less than 1 led to.
+      void add(double relative_residual, bool whole)
+      {
+        older_ = whole ? last_ : 0;
+        last_  = relative_residual;
+      }
+      bool expects_convergence(bool whole) const
+      {
+        if (!whole || older_ <= 0 || last_ >= older_ || last_ > 1e-2)
+          return false;
+        return last_ * last_ * last_ / (older_ * older_) <= tolerance_;
+      }
+
+    private:
+      double tolerance_, older_ = 0, last_ = 0;
+    };
   } // namespace
 
   void NewtonParameters::declare_parameters(ParameterHandler &prm)
@@ -188,17 +217,22 @@ namespace coshell::solvers
     problem.begin_solve();
     TangentMatrix tangent;
     problem.reinit_tangent(tangent);
-    Vector<double>   residual(problem.sparsity().n_rows());
-    Vector<double>   step_increment(residual.size());
-    double           first_energy     = 0;
-    bool             correction_small = false;
-    CorrectionRecord corrections;
-    unsigned int     climbs = 0; // corrections that climbed the energy
+    Vector<double>        residual(problem.sparsity().n_rows());
+    Vector<double>        step_increment(residual.size());
+    double                first_energy     = 0;
+    bool                  correction_small = false;
+    CorrectionRecord      corrections;
+    unsigned int          climbs = 0; // corrections that climbed the energy
+    ConvergencePrediction prediction(parameters_.residual_tolerance);
+    bool                  whole_correction = false;
     for (unsigned int iteration = 0;; ++iteration)
     {
-      problem.evaluate(residual, &tangent);
+      const bool last_expected =
+          correction_small || prediction.expects_convergence(whole_correction);
+      problem.evaluate(residual, last_expected ? nullptr : &tangent);
       const double relative_residual =
           residual.l2_norm() / std::max(problem.force_scale(), 1e-300);
+      prediction.add(relative_residual, whole_correction);
       // While a prescribed increment is pending the residual holds its
       // effect on the free unknowns, which no force measures yet.
       const bool pending = problem.prescribed_increment_pending();
@@ -217,6 +251,8 @@ namespace coshell::solvers
           observer({iteration, relative_residual, 0, 0});
         return iteration;
       }
+      if (last_expected)
+        problem.evaluate(residual, &tangent); // it was not the last after all
       if (iteration == parameters_.max_iterations)
         throw NewtonFailure(
             "Newton did not converge in " +
@@ -250,6 +286,7 @@ namespace coshell::solvers
       if (parameters_.line_search)
         du *= (scale = line_search_scale(problem, residual, du));
       corrections.add(scale <= smallest_line_search_scale, slope < 0);
+      whole_correction = fraction == 1 && scale == 1;
       problem.apply_increment(du);
       step_increment += du;
       if (observer)

@@ -73,6 +73,7 @@ namespace
             K->set(fixed_, j, fixed_ == int(j) ? 1 : 0);
       }
       ++evaluations;
+      tangent_evaluations += K != nullptr;
     }
 
     double force_scale() const override
@@ -125,8 +126,9 @@ namespace
       return x_;
     }
 
-    double       coupling    = 0;
-    unsigned int evaluations = 0;
+    double       coupling            = 0;
+    unsigned int evaluations         = 0;
+    unsigned int tangent_evaluations = 0;
     /// The convex tangent floors the spring stiffness at 1 (a modified
     /// Newton whose corrections always descend).
     bool         offers_convex_tangent = false;
@@ -199,6 +201,20 @@ TEST(Newton, SolvesUncoupledCubicsToTheBisectionRoot)
   const std::size_t n = residuals.size();
   const double order  = std::log(residuals[n - 1]) / std::log(residuals[n - 2]);
   EXPECT_GT(order, 1.8);
+}
+
+TEST(Newton, AssemblesNoTangentForTheEvaluationThatEndsTheSolve)
+{
+  // Quadratic convergence lets Newton predict that the last evaluation
+  // ends the solve: each of its corrections needed one tangent, the last
+  // evaluation none, and the root is the same.
+  CubicSprings       problem({2.0, -5.0}, 0.5);
+  Newton             newton(NewtonParameters(), umfpack());
+  const unsigned int iterations = newton.solve(problem);
+  EXPECT_EQ(problem.tangent_evaluations, iterations);
+  EXPECT_GT(problem.evaluations, problem.tangent_evaluations);
+  EXPECT_NEAR(problem.x()[0], cubic_root(2.0, 0.5), 1e-9);
+  EXPECT_NEAR(problem.x()[1], cubic_root(-5.0, 0.5), 1e-9);
 }
 
 TEST(Newton, ConvergesWhenTheExternalLoadIsZero)
