@@ -151,15 +151,15 @@ namespace coshell::model
     const auto         triangle  = current_triangle(model_, cell, point.state);
     const auto         rotations = nodal_rotations(cell, point.state);
     element::ShellDisplacements force;
-    FullMatrix<double>          tangent;
+    // Reused: an 18 x 18 allocation per cell and evaluation showed.
+    thread_local FullMatrix<double> tangent;
     if (!with_tangent || !extrapolate_)
       corotational_[index].internal_force(triangle, rotations, tangent_, force,
                                           with_tangent ? &tangent : nullptr);
     else
     {
-      TangentHistory                    &h = history_[index];
-      element::ShellDisplacements        geometric;
-      element::CorotationalLinearization linearization;
+      TangentHistory             &h = history_[index];
+      element::ShellDisplacements geometric;
       const bool same = h.valid && same_configuration(h.triangle, h.rotations,
                                                       triangle, rotations);
       if (same)
@@ -167,16 +167,17 @@ namespace coshell::model
       else if (h.valid)
         geometric = extrapolate(h.linearization, h.triangle, h.rotations,
                                 triangle, rotations);
+      // A new configuration's linearization replaces the old one, which
+      // the extrapolation above has used.
       corotational_[index].internal_force(
           triangle, rotations, tangent_, force, &tangent,
-          h.valid ? &geometric : nullptr, &linearization);
+          h.valid ? &geometric : nullptr, same ? nullptr : &h.linearization);
       if (!same)
       {
-        h.geometric_dofs = h.valid ? geometric : linearization.dofs;
+        h.geometric_dofs = h.valid ? geometric : h.linearization.dofs;
         h.valid          = true;
         h.triangle       = triangle;
         h.rotations      = rotations;
-        h.linearization  = linearization;
       }
     }
     for (unsigned int i = 0; i < element::shell_dofs; ++i)
