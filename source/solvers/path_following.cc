@@ -30,7 +30,8 @@ namespace coshell::solvers
     prm.declare_entry(
         "Geometric stiffness", "auto",
         Patterns::Selection("auto|current forces|extrapolated forces"),
-        "Which local forces of each co-rotational element drive the "
+        "A choice (no unit): which local forces of each co-rotational "
+        "element drive the "
         "terms of the tangent that are linear in them (the geometric "
         "stiffness and the rotation-update term). current forces: those "
         "of the current iterate, the exact derivative of the residual. "
