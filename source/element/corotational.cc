@@ -1,16 +1,19 @@
 // Co-rotational shell triangle (EICR, Rankin & Nour-Omid 1988; Felippa &
 // Haugen 2005). The kinematic map p -> d (perturbation of the current state
-// -> deformational DOFs) is differentiated with Sacado forward AD; the
-// material part stays the linear 1/2 d^T K_l d, contracted in double.
+// -> deformational DOFs) is differentiated in closed form; the material
+// part stays the linear 1/2 d^T K_l d, contracted in double.
 //
-// The map is split to keep the AD cheap. The co-rotated frame E and the
-// in-plane deformational translations depend on the 9 vertex translations u
-// only. Writing a perturbed frame as E(u) = exp(skew(omega(u))) E, the
+// The co-rotated frame E and the in-plane deformational translations
+// depend on the 9 vertex translations u only, through the two edges.
+// Writing a perturbed frame as E(u) = exp(skew(omega(u))) E, the
 // deformational rotation of node i,
 //   theta_d,i = axial log(E(u)^T exp(skew(theta_i)) R_i E0),
 // depends on u only through the spin omega(u), so it is differentiated with
 // respect to the 6 variables (omega, theta_i) and chained with the
-// derivatives of omega(u).
+// derivatives of omega(u). The translations and the frame's in-plane angle
+// are invariant to rotations and differentiated (forward AD, Sacado) in the
+// three scalars a.a, b.b, a.b of the edges a, b; the spin's normal part in
+// closed form (doc/theory.md 13.4).
 
 #include <coshell/element/corotational.h>
 
@@ -19,6 +22,7 @@
 #include <Sacado.hpp>
 
 #include <cmath>
+#include <optional>
 #include <type_traits>
 
 namespace coshell::element
@@ -83,16 +87,6 @@ namespace coshell::element
         for (unsigned int j = 0; j < 3; ++j)
           c[i][j] = a[i][0] * b[0][j] + a[i][1] * b[1][j] + a[i][2] * b[2][j];
       return c;
-    }
-
-    template<typename T>
-    Mat3<double> values_of(const Mat3<T> &a)
-    {
-      Mat3<double> v;
-      for (unsigned int i = 0; i < 3; ++i)
-        for (unsigned int j = 0; j < 3; ++j)
-          v[i][j] = value_of(a[i][j]);
-      return v;
     }
 
     Mat3<double> to_mat3(const Tensor<2, 3> &t)
@@ -292,28 +286,6 @@ namespace coshell::element
       return result;
     }
 
-    // Spin omega with E(u) = exp(skew(omega)) E(0), to second order in u:
-    // with D = E(u) E(0)^T - I = O(u), log(I + D) = D - D^2/2 + O(u^3).
-    template<typename T>
-    Vec3<T> frame_spin(const Mat3<T> &axes, const Mat3<double> &axes_at_zero)
-    {
-      Mat3<T> d;
-      for (unsigned int r = 0; r < 3; ++r)
-        for (unsigned int s = 0; s < 3; ++s)
-          d[r][s] = axes[0][r] * axes_at_zero[0][s] +
-                    axes[1][r] * axes_at_zero[1][s] +
-                    axes[2][r] * axes_at_zero[2][s] - (r == s ? 1.0 : 0.0);
-      const Mat3<T> d_squared = product(d, d);
-      Vec3<T>       spin;
-      for (unsigned int i = 0; i < 3; ++i)
-      {
-        const unsigned int j = (i + 1) % 3, k = (i + 2) % 3;
-        spin[i] = 0.5 * ((d[k][j] - d[j][k]) -
-                         0.5 * (d_squared[k][j] - d_squared[j][k]));
-      }
-      return spin;
-    }
-
     // The current triad of a node, R_i E0, as a matrix with the triad
     // vectors as columns.
     Mat3<double> nodal_triad(const Tensor<2, 3>          &rotation,
@@ -469,28 +441,50 @@ namespace coshell::element
 
     using Matrix18 = std::array<std::array<double, shell_dofs>, shell_dofs>;
 
-    /// Forward AD of order 1 (gradient) or 2 (gradient and Hessian) in n
-    /// variables; order 0 is plain evaluation.
-    template<int order, int n>
-    struct Jet;
+    // ---- derivatives of the frame and the translations in the edges -------
+    //
+    // The co-rotated frame and the in-plane translations depend on the
+    // vertices only through the edges a = x1 - x0 and b = x2 - x0 (a rigid
+    // translation moves neither): d/dx_v = sum_e edge_weight[v][e] d/de_e.
+    // They are differentiated in closed form at the current configuration
+    // (doc/theory.md 13.4):
+    // - the translations and the polar angle theta of the frame in the
+    //   edge frame (t1 = a/|a|, t2 = n x t1) are invariant to rotations, so
+    //   they depend on (a, b) only through (A, B, C) = (a.a, b.b, a.b);
+    //   they are differentiated in those three scalars (forward AD of a
+    //   dozen scalar operations) and chained;
+    // - the spin omega of the frame, E(u) = exp(skew(omega)) E, is to
+    //   second order omega = n0 x n + chi n0 + 1/2 chi (n - (n.n0) n0),
+    //   with n the unit normal and chi = psi + theta - theta0 the in-plane
+    //   turn about it: psi, the turn of t1 from its minimal-rotation
+    //   transport, is t2_0.t1 - (n0.t1)(t2_0.n) - 1/2 (t1_0.n)(t2_0.n) to
+    //   second order.
+    constexpr double edge_weight[3][2] = {{-1.0, -1.0}, {1.0, 0.0}, {0.0, 1.0}};
 
-    template<int n>
-    struct Jet<0, n>
+    void require_nondegenerate(const SpatialTriangle &current)
     {
-      using type = double;
-      static type variable(double value, int)
-      {
-        return value;
-      }
-    };
+      make_element_frame(current); // throws DegenerateTriangle
+    }
 
-    template<int n>
-    struct Jet<1, n>
+    /// A gradient (d/da, d/db) and a Hessian in the six edge components.
+    using EdgeVector = std::array<double, 6>;
+    using EdgeMatrix = std::array<std::array<double, 6>, 6>;
+
+    /// Forward AD in the invariants (A, B, C), to first or second order.
+    template<int order>
+    struct InvariantJet;
+
+    template<>
+    struct InvariantJet<1>
     {
-      using type = Sacado::Fad::SFad<double, n>;
+      using type = Sacado::Fad::SFad<double, 3>;
       static type variable(double value, int k)
       {
-        return type(n, k, value);
+        return type(3, k, value);
+      }
+      static void set_value(type &x, double value)
+      {
+        x.val() = value;
       }
       static double derivative(const type &x, int k)
       {
@@ -498,14 +492,18 @@ namespace coshell::element
       }
     };
 
-    template<int n>
-    struct Jet<2, n>
+    template<>
+    struct InvariantJet<2>
     {
-      using inner = Sacado::Fad::SFad<double, n>;
-      using type  = Sacado::Fad::SFad<inner, n>;
+      using inner = Sacado::Fad::SFad<double, 3>;
+      using type  = Sacado::Fad::SFad<inner, 3>;
       static type variable(double value, int k)
       {
-        return type(n, k, inner(n, k, value));
+        return type(3, k, inner(3, k, value));
+      }
+      static void set_value(type &x, double value)
+      {
+        x.val().val() = value;
       }
       static double derivative(const type &x, int k)
       {
@@ -517,20 +515,281 @@ namespace coshell::element
       }
     };
 
-    // The translations and the frame depend on the vertices only through
-    // the edges e1 = x1 - x0 and e2 = x2 - x0 (a rigid translation moves
-    // neither), so the AD runs in those 6 variables (3 * edge + component):
-    // d/dx_v = sum_e edge_weight[v][e] d/de_e.
-    constexpr double edge_weight[3][2] = {{-1.0, -1.0}, {1.0, 0.0}, {0.0, 1.0}};
-
-    void require_nondegenerate(const SpatialTriangle &current)
+    template<typename T>
+    struct PlanarState
     {
-      make_element_frame(current); // throws DegenerateTriangle
+      T                               angle; ///< theta, in the edge frame
+      std::array<std::array<T, 2>, 3> translations;
+    };
+
+    /// corotate() restated in the invariants: the vertices in the edge
+    /// frame are (0, 0), (|a|, 0), (C/|a|, |a x b|/|a|). |a x b|^2 takes
+    /// its value from the cross product (A B - C^2 cancels on slivers) and
+    /// its derivatives from A B - C^2.
+    template<int order>
+    PlanarState<typename InvariantJet<order>::type>
+    planar_state(const CorotationalReference &reference,
+                 const Vec3<double>          &a,
+                 const Vec3<double>          &b,
+                 double                       cross_squared)
+    {
+      using Jet = InvariantJet<order>;
+      using T   = typename Jet::type;
+      using std::atan2;
+      using std::cos;
+      using std::sin;
+      using std::sqrt;
+      const T A         = Jet::variable(dot(a, a), 0);
+      const T B         = Jet::variable(dot(b, b), 1);
+      const T C         = Jet::variable(dot(a, b), 2);
+      T       area_term = A * B - C * C;
+      Jet::set_value(area_term, cross_squared);
+      const T length = sqrt(A);
+      const T b1     = C / length;
+      const T b2     = sqrt(area_term) / length;
+
+      const T                         cx = (length + b1) / 3.0, cy = b2 / 3.0;
+      std::array<std::array<T, 2>, 3> y;
+      y[0]                = {{-cx, -cy}};
+      y[1]                = {{length - cx, -cy}};
+      y[2]                = {{b1 - cx, b2 - cy}};
+      const auto &inverse = reference.inverse_edges;
+      const T     f00     = length * inverse[0][0] + b1 * inverse[1][0];
+      const T     f01     = length * inverse[0][1] + b1 * inverse[1][1];
+      const T     f10     = b2 * inverse[1][0];
+      const T     f11     = b2 * inverse[1][1];
+
+      PlanarState<T> state;
+      state.angle = atan2(f10 - f01, f00 + f11);
+      const T c = cos(state.angle), s = sin(state.angle);
+      for (unsigned int i = 0; i < 3; ++i)
+      {
+        const Point<2> &initial  = reference.coordinates[i];
+        state.translations[i][0] = c * y[i][0] + s * y[i][1] - initial[0];
+        state.translations[i][1] = c * y[i][1] - s * y[i][0] - initial[1];
+      }
+      return state;
     }
 
+    /// A function of (A, B, C): its gradient and (order 2) Hessian there.
+    struct InvariantDerivatives
+    {
+      Vec3<double> gradient{};
+      Mat3<double> hessian{};
+    };
+
+    template<int order>
+    InvariantDerivatives
+    invariant_derivatives(const typename InvariantJet<order>::type &x)
+    {
+      InvariantDerivatives result;
+      for (int k = 0; k < 3; ++k)
+      {
+        result.gradient[k] = InvariantJet<order>::derivative(x, k);
+        if constexpr (order == 2)
+          for (int l = 0; l < 3; ++l)
+            result.hessian[k][l] =
+                InvariantJet<order>::second_derivative(x, k, l);
+      }
+      return result;
+    }
+
+    EdgeVector edge_vector(const Vec3<double> &da, const Vec3<double> &db)
+    {
+      return {{da[0], da[1], da[2], db[0], db[1], db[2]}};
+    }
+
+    /// h += factor (u v^T + v u^T).
+    void add_symmetric_product(double            factor,
+                               const EdgeVector &u,
+                               const EdgeVector &v,
+                               EdgeMatrix       &h)
+    {
+      for (unsigned int k = 0; k < 6; ++k)
+        for (unsigned int l = 0; l < 6; ++l)
+          h[k][l] += factor * (u[k] * v[l] + v[k] * u[l]);
+    }
+
+    /// The derivatives of the frame's spin and of the translations in the
+    /// edges, order 1 (gradients) or 2 (and weighted Hessians).
+    template<int order>
+    class EdgeDerivatives
+    {
+    public:
+      EdgeDerivatives(const CorotationalReference &reference,
+                      const SpatialTriangle       &current)
+      {
+        for (unsigned int c = 0; c < 3; ++c)
+        {
+          a[c] = current[1][c] - current[0][c];
+          b[c] = current[2][c] - current[0][c];
+        }
+        length               = std::sqrt(dot(a, a));
+        t1                   = scaled(1.0 / length, a);
+        const Vec3<double> c = cross(a, b);
+        cross_length         = std::sqrt(dot(c, c));
+        n                    = scaled(1.0 / cross_length, c);
+        t2                   = cross(n, t1);
+        invariant_gradients  = {{edge_vector(scaled(2.0, a), {}),
+                                 edge_vector({}, scaled(2.0, b)),
+                                 edge_vector(b, a)}};
+
+        const auto planar = planar_state<order>(reference, a, b, dot(c, c));
+        angle             = invariant_derivatives<order>(planar.angle);
+        for (unsigned int i = 0; i < 3; ++i)
+          for (unsigned int k = 0; k < 2; ++k)
+          {
+            translation[i][k] =
+                invariant_derivatives<order>(planar.translations[i][k]);
+            translation_gradients[i][k] = chain(translation[i][k].gradient);
+          }
+
+        turn_gradient = chain(angle.gradient);
+        for (unsigned int k = 0; k < 3; ++k)
+          turn_gradient[k] += t2[k] / length; // d psi
+        for (unsigned int k = 0; k < 6; ++k)
+        {
+          const Vec3<double> dn     = normal_derivative(k);
+          const Vec3<double> n_x_dn = cross(n, dn);
+          for (unsigned int m = 0; m < 3; ++m)
+            spin_gradients[m][k] = n_x_dn[m] + n[m] * turn_gradient[k];
+        }
+      }
+
+      const EdgeVector &translation_gradient(unsigned int i,
+                                             unsigned int k) const
+      {
+        return translation_gradients[i][k];
+      }
+
+      const EdgeVector &spin_gradient(unsigned int m) const
+      {
+        return spin_gradients[m];
+      }
+
+      /// h += sum w_ik d^2 t_ik + sum s_m d^2 omega_m (order 2 only).
+      void add_weighted_hessian(const std::array<std::array<double, 2>, 3> &w,
+                                const Vec3<double>                         &s,
+                                EdgeMatrix &h) const
+      {
+        static_assert(order == 2, "second derivatives need order 2");
+        const double s_normal = dot(s, n);
+        // The invariant functions: the translations and theta (in chi).
+        InvariantDerivatives sum;
+        for (unsigned int p = 0; p < 3; ++p)
+        {
+          sum.gradient[p] = s_normal * angle.gradient[p];
+          for (unsigned int q = 0; q < 3; ++q)
+            sum.hessian[p][q] = s_normal * angle.hessian[p][q];
+        }
+        for (unsigned int i = 0; i < 3; ++i)
+          for (unsigned int k = 0; k < 2; ++k)
+            for (unsigned int p = 0; p < 3; ++p)
+            {
+              sum.gradient[p] += w[i][k] * translation[i][k].gradient[p];
+              for (unsigned int q = 0; q < 3; ++q)
+                sum.hessian[p][q] += w[i][k] * translation[i][k].hessian[p][q];
+            }
+        add_invariant_hessian(sum, h);
+
+        // (s.n0) psi_uu.
+        const EdgeVector t2_normal = normal_gradient(t2);
+        for (unsigned int k = 0; k < 3; ++k)
+          for (unsigned int l = 0; l < 3; ++l)
+            h[k][l] -=
+                s_normal * (t2[k] * t1[l] + t1[k] * t2[l]) / (length * length);
+        add_symmetric_product(
+            -s_normal, edge_vector(scaled(1.0 / length, n), {}), t2_normal, h);
+        add_symmetric_product(-0.5 * s_normal, normal_gradient(t1), t2_normal,
+                              h);
+
+        // s . (n0 x n) = (s x n0) . n, and 1/2 chi (s . P n), P = I - n0 n0^T.
+        add_normal_hessian(cross(s, n), h);
+        add_symmetric_product(0.5, turn_gradient,
+                              normal_gradient(s - scaled(s_normal, n)), h);
+      }
+
+    private:
+      /// Gradient in the edges of f(A, B, C) from its invariant gradient.
+      EdgeVector chain(const Vec3<double> &f) const
+      {
+        EdgeVector g{};
+        for (unsigned int p = 0; p < 3; ++p)
+          for (unsigned int k = 0; k < 6; ++k)
+            g[k] += f[p] * invariant_gradients[p][k];
+        return g;
+      }
+
+      /// h += the edge Hessian of f(A, B, C): the invariants' gradients
+      /// through f's Hessian, and f's gradient through the invariants'
+      /// constant Hessians (2 I, 2 I and the identity across a and b).
+      void add_invariant_hessian(const InvariantDerivatives &f,
+                                 EdgeMatrix                 &h) const
+      {
+        for (unsigned int p = 0; p < 3; ++p)
+          for (unsigned int q = 0; q < 3; ++q)
+            for (unsigned int k = 0; k < 6; ++k)
+              for (unsigned int l = 0; l < 6; ++l)
+                h[k][l] += f.hessian[p][q] * invariant_gradients[p][k] *
+                           invariant_gradients[q][l];
+        for (unsigned int c = 0; c < 3; ++c)
+        {
+          h[c][c] += 2.0 * f.gradient[0];
+          h[3 + c][3 + c] += 2.0 * f.gradient[1];
+          h[c][3 + c] += f.gradient[2];
+          h[3 + c][c] += f.gradient[2];
+        }
+      }
+
+      /// d n / d e_k: the normal's change under a unit change of edge
+      /// component k (a for k < 3, b above).
+      Vec3<double> normal_derivative(unsigned int k) const
+      {
+        Vec3<double> unit{};
+        unit[k % 3]             = 1.0;
+        const Vec3<double> dc   = k < 3 ? cross(unit, b) : cross(a, unit);
+        const double       dc_n = dot(dc, n);
+        return scaled(1.0 / cross_length, dc - scaled(dc_n, n));
+      }
+
+      /// The edge gradient of v . n for v normal to n.
+      EdgeVector normal_gradient(const Vec3<double> &v) const
+      {
+        return edge_vector(scaled(1.0 / cross_length, cross(b, v)),
+                           scaled(1.0 / cross_length, cross(v, a)));
+      }
+
+      /// h += the edge Hessian of v . n for v normal to n, through
+      /// c = a x b: J_c^T H_c J_c with H_c = -(v n^T + n v^T)/|c|^2, and
+      /// the bilinearity of c, -skew(v)/|c| in the (a, b) block.
+      void add_normal_hessian(const Vec3<double> &v, EdgeMatrix &h) const
+      {
+        const double inverse = 1.0 / cross_length;
+        add_symmetric_product(-inverse * inverse,
+                              edge_vector(cross(b, v), cross(v, a)),
+                              edge_vector(cross(b, n), cross(n, a)), h);
+        const Mat3<double> skew_v = skew_matrix(scaled(inverse, v));
+        for (unsigned int k = 0; k < 3; ++k)
+          for (unsigned int l = 0; l < 3; ++l)
+          {
+            h[k][3 + l] -= skew_v[k][l];
+            h[3 + l][k] -= skew_v[k][l];
+          }
+      }
+
+      Vec3<double>              a, b, t1, t2, n;
+      double                    length, cross_length;
+      std::array<EdgeVector, 3> invariant_gradients; ///< of A, B, C
+      InvariantDerivatives      angle;
+      std::array<std::array<InvariantDerivatives, 2>, 3> translation;
+      std::array<std::array<EdgeVector, 2>, 3>           translation_gradients;
+      EdgeVector                turn_gradient;  ///< of chi
+      std::array<EdgeVector, 3> spin_gradients; ///< of omega
+    };
+
     // d and its derivatives with respect to the perturbation p at p = 0:
-    // the edges (6 AD variables) drive the frame and the in-plane
-    // translations; each node's rotation is differentiated in closed form
+    // the edges drive the frame and the in-plane translations (closed
+    // form, above); each node's rotation is differentiated in closed form
     // with respect to (omega, theta_i) and chained with the derivatives of
     // omega(u). Order 0 gives d alone.
     template<int order>
@@ -540,21 +799,16 @@ namespace coshell::element
       CorotatedKinematics(const CorotationalReference &reference,
                           const SpatialTriangle       &current,
                           const NodalRotations        &rotations)
+          : edges(make_edge_derivatives(reference, current))
       {
-        require_nondegenerate(current);
-        std::array<Vec3<Translational>, 3> x;
-        for (unsigned int c = 0; c < 3; ++c)
-        {
-          x[0][c] = current[0][c];
-          x[1][c] = TranslationJet::variable(current[1][c], c);
-          x[2][c] = TranslationJet::variable(current[2][c], 3 + c);
-        }
-        const CorotatedConfiguration<Translational> configuration =
+        std::array<Vec3<double>, 3> x;
+        for (unsigned int v = 0; v < 3; ++v)
+          for (unsigned int c = 0; c < 3; ++c)
+            x[v][c] = current[v][c];
+        const CorotatedConfiguration<double> configuration =
             corotate(reference, x);
         translations = configuration.translations;
-        axes         = values_of(configuration.axes);
-        if constexpr (order > 0)
-          spin = frame_spin(configuration.axes, axes);
+        axes         = configuration.axes;
 
         for (unsigned int i = 0; i < 3; ++i)
         {
@@ -584,7 +838,7 @@ namespace coshell::element
           for (unsigned int c = 0; c < 3; ++c)
           {
             if (c < 2)
-              d[6 * i + c] = value_of(translations[i][c]);
+              d[6 * i + c] = translations[i][c];
             d[rotation_dof(i, c)] = nodal_rotations[i].value[c];
           }
         return d;
@@ -593,11 +847,13 @@ namespace coshell::element
       /// J = dd/dp (18 x 18); the rows of w are zero.
       void jacobian(Matrix18 &j) const
       {
+        static_assert(order > 0, "the Jacobian needs order 1 or 2");
         j = {};
         for (unsigned int i = 0; i < 3; ++i)
           for (unsigned int c = 0; c < 2; ++c)
           {
-            const auto gradient = vertex_gradient(translations[i][c]);
+            const auto gradient =
+                vertex_gradient(edges->translation_gradient(i, c));
             for (unsigned int k = 0; k < 9; ++k)
               j[6 * i + c][translation_dof(k)] = gradient[k];
           }
@@ -621,14 +877,17 @@ namespace coshell::element
                                 Matrix18                 &h) const
       {
         static_assert(order == 2, "second derivatives need order 2");
-        std::array<std::array<double, 6>, 6> edge_hessian{};
+        std::array<std::array<double, 2>, 3> translation_weights;
         for (unsigned int i = 0; i < 3; ++i)
           for (unsigned int c = 0; c < 2; ++c)
-            add_edge_hessian(weights[6 * i + c], translations[i][c],
-                             edge_hessian);
-        const auto spin_gradient = spin_vertex_gradient();
+            translation_weights[i][c] = weights[6 * i + c];
+        const auto   spin_gradient = spin_vertex_gradient();
+        Vec3<double> spin_weights{};
         for (unsigned int i = 0; i < 3; ++i)
-          add_rotation_hessian(i, weights, spin_gradient, edge_hessian, h);
+          add_rotation_hessian(i, weights, spin_gradient, spin_weights, h);
+        EdgeMatrix edge_hessian{};
+        edges->add_weighted_hessian(translation_weights, spin_weights,
+                                    edge_hessian);
 
         // H_x = L^T H_e L block by block, L = edge_weight.
         for (unsigned int v = 0; v < 3; ++v)
@@ -647,20 +906,27 @@ namespace coshell::element
       }
 
     private:
-      using TranslationJet = Jet<order, 6>;
-      using Translational  = typename TranslationJet::type;
-      using SpinGradient   = std::array<std::array<double, 9>, 3>;
+      using SpinGradient = std::array<std::array<double, 9>, 3>;
 
-      static std::array<double, 9> vertex_gradient(const Translational &x)
+      static std::optional<EdgeDerivatives<order>>
+      make_edge_derivatives(const CorotationalReference &reference,
+                            const SpatialTriangle       &current)
+      {
+        require_nondegenerate(current);
+        if constexpr (order == 0)
+          return std::nullopt;
+        else
+          return EdgeDerivatives<order>(reference, current);
+      }
+
+      static std::array<double, 9> vertex_gradient(const EdgeVector &edge)
       {
         std::array<double, 9> gradient;
         for (unsigned int c = 0; c < 3; ++c)
         {
-          const double d1 = TranslationJet::derivative(x, c);
-          const double d2 = TranslationJet::derivative(x, 3 + c);
-          gradient[c]     = -d1 - d2;
-          gradient[3 + c] = d1;
-          gradient[6 + c] = d2;
+          gradient[c]     = -edge[c] - edge[3 + c];
+          gradient[3 + c] = edge[c];
+          gradient[6 + c] = edge[3 + c];
         }
         return gradient;
       }
@@ -670,28 +936,19 @@ namespace coshell::element
       {
         SpinGradient gradient;
         for (unsigned int m = 0; m < 3; ++m)
-          gradient[m] = vertex_gradient(spin[m]);
+          gradient[m] = vertex_gradient(edges->spin_gradient(m));
         return gradient;
-      }
-
-      static void add_edge_hessian(double                                weight,
-                                   const Translational                  &x,
-                                   std::array<std::array<double, 6>, 6> &h)
-      {
-        for (unsigned int a = 0; a < 6; ++a)
-          for (unsigned int b = 0; b < 6; ++b)
-            h[a][b] += weight * TranslationJet::second_derivative(x, a, b);
       }
 
       // Chain rule through omega(u) for psi = sum_a w_a theta_d,a(omega,
       // theta): psi_uu = Omega^T psi_ww Omega + psi_w . omega_uu, psi_ut =
       // Omega^T psi_wt, with Omega = d omega / du. The omega_uu term is
-      // gathered in the edge variables.
-      void add_rotation_hessian(unsigned int                          i,
-                                const ShellDisplacements             &weights,
-                                const SpinGradient                   &omega,
-                                std::array<std::array<double, 6>, 6> &edge_h,
-                                Matrix18                             &h) const
+      // gathered as weights of the spin (spin_weights).
+      void add_rotation_hessian(unsigned int              i,
+                                const ShellDisplacements &weights,
+                                const SpinGradient       &omega,
+                                Vec3<double>             &spin_weights,
+                                Matrix18                 &h) const
       {
         const Vec3<double>              w = {{weights[rotation_dof(i, 0)],
                                               weights[rotation_dof(i, 1)],
@@ -699,10 +956,9 @@ namespace coshell::element
         const NodalRotationDerivatives &rotation = nodal_rotations[i];
         const auto psi_hessian = rotation_hessian(rotation, axes, w);
         // d psi / d omega = -M A.
-        const Vec3<double> psi_spin =
-            scaled(-1.0, transpose_times(rotation.gradient, w));
+        const Vec3<double> psi_spin = transpose_times(rotation.gradient, w);
         for (unsigned int m = 0; m < 3; ++m)
-          add_edge_hessian(psi_spin[m], spin[m], edge_h);
+          spin_weights[m] -= psi_spin[m];
 
         // Omega^T psi_w. over the 6 columns (omega, theta).
         double mixed[9][6] = {};
@@ -729,10 +985,10 @@ namespace coshell::element
                 psi_hessian[3 + a][3 + b];
       }
 
-      std::array<std::array<Translational, 2>, 3> translations{};
-      Vec3<Translational>                         spin{}; ///< order > 0
-      std::array<NodalRotationDerivatives, 3>     nodal_rotations{};
-      Mat3<double>                                axes{};
+      std::optional<EdgeDerivatives<order>>   edges;
+      std::array<std::array<double, 2>, 3>    translations{};
+      std::array<NodalRotationDerivatives, 3> nodal_rotations{};
+      Mat3<double>                            axes{};
     };
 
     // ---- forces and tangents ----------------------------------------------
