@@ -475,6 +475,8 @@ def main():
     args = parser.parse_args()
     if not shutil.which(args.ccx):
         sys.exit("ccx not found (Debian package calculix-ccx)")
+    # The runs start in the work directory.
+    args.coshell, args.work = os.path.abspath(args.coshell), os.path.abspath(args.work)
     os.makedirs(args.output, exist_ok=True)
     series = []
     for benchmark in args.benchmarks:

@@ -10,7 +10,7 @@ the same run at the accuracy each reaches against the published tables.
       [--benchmarks hemisphere slit_plate] [--codes calculix coshell]
       [--elements S4 S8R C3D8I C3D20R] [--hemisphere-n 8 16 32]
       [--hemisphere-levels 1 2 3] [--plate-calculix 3x15 6x30 12x60]
-      [--plate-coshell 6x30 12x60 24x120] [--max-seconds 120]
+      [--plate-coshell 6x30 12x60 16x80 24x120] [--max-seconds 120]
       [--repeats 3]
 
 Scenes: coshell runs prm/benchmarks/pinched_hemisphere.prm (Refinement
@@ -491,7 +491,7 @@ def main():
     parser.add_argument("--hemisphere-n", nargs="+", type=int, default=[8, 16, 32])
     parser.add_argument("--hemisphere-levels", nargs="+", type=int, default=[1, 2, 3])
     parser.add_argument("--plate-calculix", nargs="+", default=["3x15", "6x30", "12x60"])
-    parser.add_argument("--plate-coshell", nargs="+", default=["6x30", "12x60", "24x120"])
+    parser.add_argument("--plate-coshell", nargs="+", default=["6x30", "12x60", "16x80", "24x120"])
     parser.add_argument("--max-seconds", type=float, default=120.0)
     parser.add_argument("--repeats", type=int, default=3)
     args = parser.parse_args()
@@ -499,6 +499,8 @@ def main():
         sys.exit("ccx not found (Debian package calculix-ccx)")
     if "coshell" in args.codes and not os.access(args.coshell, os.X_OK):
         sys.exit(f"no coshell binary at {args.coshell} (--coshell)")
+    # The runs start in their work directories.
+    args.coshell, args.work = os.path.abspath(args.coshell), os.path.abspath(args.work)
     os.makedirs(args.output, exist_ok=True)
     series = []
     for benchmark in args.benchmarks:
