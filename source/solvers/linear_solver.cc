@@ -427,7 +427,9 @@ namespace coshell::solvers
                                          mode.begin(), mode.end());
   }
 
-  void LinearSolver::solve(Vector<double> &x, const Vector<double> &b)
+  void LinearSolver::solve(Vector<double>       &x,
+                           const Vector<double> &b,
+                           Refinement            refinement)
   {
     const ScopeTimer timer{seconds_};
     if (backend_->using_cholmod)
@@ -446,7 +448,10 @@ namespace coshell::solvers
         ++factorizations_;
         unfactorized_ = nullptr;
       }
-      backend_->umfpack.solve(x, b);
+      if (refinement == Refinement::none)
+        backend_->umfpack.apply_factors(x, b);
+      else
+        backend_->umfpack.solve(x, b);
       last_iterations_ = 1;
       return;
     }

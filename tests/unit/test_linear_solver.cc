@@ -155,6 +155,25 @@ TEST(LinearSolverReuse, OffByDefault)
   EXPECT_EQ(solver.reused_factor_solves(), 0u);
 }
 
+// A Newton correction skips UMFPACK's iterative refinement: the factors
+// applied once still solve a well-conditioned system to round-off, after
+// a fresh factorization as after kept factors gave up.
+TEST(LinearSolverRefinement, WithoutRefinementTheFactorsSolveTheSystem)
+{
+  Tridiagonal                 system(200);
+  const SparseMatrix<double> &matrix = system.set(0.3);
+  Vector<double>              b(200), x(200), residual(200);
+  for (unsigned int i = 0; i < b.size(); ++i)
+    b[i] = 1.0 + std::sin(0.1 * i);
+  LinearSolver solver;
+  configure(solver, false);
+  solver.factorize(matrix, false);
+  solver.solve(x, b, LinearSolver::Refinement::none);
+  matrix.residual(residual, x, b);
+  EXPECT_LT(residual.linfty_norm(), 1e-13 * b.linfty_norm());
+  expect_direct_answer(matrix, b, x, 1e-13);
+}
+
 // The Trilinos methods copy the matrix; once they hold the copy the caller
 // may free its own (LinearStatic does, at millions of DoFs). The solution
 // must not depend on the freed matrix, and methods that keep reading the

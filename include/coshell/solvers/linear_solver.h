@@ -49,11 +49,26 @@ namespace coshell::solvers
     /// on one rank, where the solvers take complete deal.II matrices.
     const dealii::IndexSet &distributed_rows() const;
 
+    /// How far a direct solve polishes its answer.
+    enum class Refinement
+    {
+      /// UMFPACK's iterative refinement (up to two steps of x += A^-1 (b -
+      /// A x)): the answer of a linear analysis.
+      iterative,
+      /// The factors applied once: a Newton correction, which the next
+      /// Newton iteration refines anyway.
+      none
+    };
+
     /// Solves with the last matrix given to factorize(). With Reuse
     /// factorization that matrix may not be factorized yet: it is then read
     /// here, so it must be unchanged and alive until the last solve().
     /// Throws std::runtime_error if an iterative method does not converge.
-    void solve(dealii::Vector<double> &x, const dealii::Vector<double> &b);
+    /// 'refinement' matters to UMFPACK only (CHOLMOD does not refine; the
+    /// Trilinos methods solve to their Tolerance).
+    void solve(dealii::Vector<double>       &x,
+               const dealii::Vector<double> &b,
+               Refinement refinement = Refinement::iterative);
 
     /// True when the method can use the near-null space (cg-amg with
     /// "AMG near-null space = rigid body").
