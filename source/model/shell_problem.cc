@@ -291,7 +291,7 @@ namespace coshell::model
     trimmed_ = block.matrix;
     for (unsigned int i = 0; i < block.dofs.size(); ++i)
       for (unsigned int j = 0; j < block.dofs.size(); ++j)
-        if (!sparsity_.exists(block.dofs[i], block.dofs[j]))
+        if (!solvers::stores_entry(sparsity_, block.dofs[i], block.dofs[j]))
           trimmed_(i, j) = 0;
     return trimmed_;
   }
