@@ -101,6 +101,39 @@ namespace coshell::contact
       return std::sqrt(largest);
     }
 
+    /// As largest_drift(), less a common translation of all the points:
+    /// their largest distance from the centre of the drifts' bounding box,
+    /// at the start and at the end of the motion. Distances between shell
+    /// primitives change by at most twice it (a translation changes none;
+    /// the translations at the two ends, interpolated, bound the motion).
+    double largest_relative_drift(const std::vector<unsigned int> &used,
+                                  const std::vector<Point<3>>     &x,
+                                  const std::vector<Tensor<1, 3>> *d,
+                                  const std::vector<Point<3>>     &listed)
+    {
+      double largest = 0;
+      if (used.empty())
+        return largest;
+      for (const bool end : {false, true})
+      {
+        if (end && !d)
+          break;
+        const auto drift = [&](unsigned int i)
+        { return x[i] - listed[i] + (end ? (*d)[i] : Tensor<1, 3>()); };
+        Tensor<1, 3> lower = drift(used.front()), upper = lower;
+        for (const unsigned int i : used)
+          for (unsigned int c = 0; c < 3; ++c)
+          {
+            lower[c] = std::min(lower[c], drift(i)[c]);
+            upper[c] = std::max(upper[c], drift(i)[c]);
+          }
+        const Tensor<1, 3> centre = 0.5 * (lower + upper);
+        for (const unsigned int i : used)
+          largest = std::max(largest, (drift(i) - centre).norm_square());
+      }
+      return std::sqrt(largest);
+    }
+
   } // namespace
 
   void Contact::CandidateRows::clear()
@@ -180,9 +213,19 @@ namespace coshell::contact
         largest_drift(&shell_vertices_, motion.x, nullptr, c.shell);
     const double shell_swept =
         largest_drift(&shell_vertices_, motion.x, motion.dx, c.shell);
-    if (parameters_.self_contact && 2 * shell_swept > c.margin)
-      return false;
-    self_screen = {2 * shell_now};
+    if (parameters_.self_contact)
+    {
+      // A lens pushed along the injector mostly translates: its self
+      // distances stay, and the lists with them.
+      const double self_swept =
+          largest_relative_drift(shell_vertices_, motion.x, motion.dx, c.shell);
+      if (2 * self_swept > c.margin)
+        return false;
+      self_screen = {2 * largest_relative_drift(shell_vertices_, motion.x,
+                                                nullptr, c.shell)};
+    }
+    else
+      self_screen = {2 * shell_now};
     obstacle_screens.resize(current_.size());
     for (unsigned int o = 0; o < current_.size(); ++o)
     {
