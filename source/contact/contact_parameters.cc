@@ -93,12 +93,13 @@ namespace coshell::contact
         "which a step cut shrinks with the step, stiffening friction "
         "where Newton already struggles.");
     prm.declare_entry(
-        "Edge-edge pairs", "false", Patterns::Bool(),
+        "Edge-edge pairs", "true", Patterns::Bool(),
         "Also keep shell edges from obstacle edges (and, with Self "
         "contact, from shell edges), with the same friction, so that "
         "an obstacle edge cannot cut through a shell edge between their "
         "vertices; nearly parallel edges fade out smoothly (IPC's "
-        "mollifier). false: vertex-triangle pairs only.");
+        "mollifier). false: vertex-triangle pairs only (cheaper; an "
+        "edge crossing between vertices is then not seen).");
     prm.declare_entry(
         "Self contact", "false", Patterns::Bool(),
         "Also keep the shell from itself: shell vertices against shell "

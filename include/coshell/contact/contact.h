@@ -62,7 +62,7 @@ namespace coshell::contact
     double stiction_displacement = 0;
     /// Shell edges against obstacle edges (with IPC's mollifier for
     /// nearly parallel edges), with the obstacle's friction.
-    bool edge_edge_pairs = false;
+    bool edge_edge_pairs = true;
     /// Shell against shell (vertex-triangle pairs, and edge-edge pairs
     /// with edge_edge_pairs).
     bool self_contact = false;
