@@ -122,11 +122,14 @@ namespace coshell::contact
         { return x[i] - listed[i] + (end ? (*d)[i] : Tensor<1, 3>()); };
         Tensor<1, 3> lower = drift(used.front()), upper = lower;
         for (const unsigned int i : used)
+        {
+          const Tensor<1, 3> moved = drift(i);
           for (unsigned int c = 0; c < 3; ++c)
           {
-            lower[c] = std::min(lower[c], drift(i)[c]);
-            upper[c] = std::max(upper[c], drift(i)[c]);
+            lower[c] = std::min(lower[c], moved[c]);
+            upper[c] = std::max(upper[c], moved[c]);
           }
+        }
         const Tensor<1, 3> centre = 0.5 * (lower + upper);
         for (const unsigned int i : used)
           largest = std::max(largest, (drift(i) - centre).norm_square());
