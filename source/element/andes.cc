@@ -100,7 +100,8 @@ namespace coshell::element
     // linear plus an outward Allman bubble, alpha_b (l/8) (theta_j -
     // theta_i) at the midpoint; its work against the constant traction
     // gives the drilling rows +-alpha_b l^2 N_nn / 12.
-    FullMatrix<double> lumping_matrix(const PlanarTriangle &triangle)
+    FullMatrix<double> lumping_matrix(const PlanarTriangle &triangle,
+                                      double                drilling_scale)
     {
       FullMatrix<double> lumping(membrane_dofs, 3);
       for (unsigned int e = 0; e < 3; ++e)
@@ -118,7 +119,8 @@ namespace coshell::element
         const double bubble_work[3] = {dy * dy, dx * dx, -2.0 * dx * dy};
         for (unsigned int c = 0; c < 3; ++c)
         {
-          const double moment = basic_drilling_weight * bubble_work[c] / 12.0;
+          const double moment =
+              drilling_scale * basic_drilling_weight * bubble_work[c] / 12.0;
           lumping(dof(next(e), 2), c) += moment;
           lumping(dof(e, 2), c) -= moment;
         }
@@ -128,20 +130,23 @@ namespace coshell::element
 
     // Basic (constant) strain L^T u / A: the mean strain over the element.
     Vector<double> basic_strain(const PlanarTriangle        &triangle,
-                                const MembraneDisplacements &dofs)
+                                const MembraneDisplacements &dofs,
+                                double                       drilling_scale)
     {
       Vector<double> strain(3);
-      lumping_matrix(triangle).Tvmult(strain,
-                                      Vector<double>(dofs.begin(), dofs.end()));
+      lumping_matrix(triangle, drilling_scale)
+          .Tvmult(strain, Vector<double>(dofs.begin(), dofs.end()));
       strain /= signed_area(triangle);
       return strain;
     }
 
     FullMatrix<double> basic_stiffness(const PlanarTriangle &triangle,
-                                       const ShellMaterial  &material)
+                                       const ShellMaterial  &material,
+                                       double                drilling_scale)
     {
-      const FullMatrix<double> lumping = lumping_matrix(triangle);
-      FullMatrix<double>       stiffness(membrane_dofs, membrane_dofs);
+      const FullMatrix<double> lumping =
+          lumping_matrix(triangle, drilling_scale);
+      FullMatrix<double> stiffness(membrane_dofs, membrane_dofs);
       stiffness.triple_product(membrane_material(material), lumping, lumping,
                                false, true, 1.0 / signed_area(triangle));
       return stiffness;
@@ -249,12 +254,13 @@ namespace coshell::element
 
   FullMatrix<double> andes_stiffness(const PlanarTriangle &triangle,
                                      const ShellMaterial  &material,
-                                     double                higher_order_scale)
+                                     const AndesScales    &scales)
   {
-    const auto           order         = counter_clockwise_order(triangle);
-    const PlanarTriangle ccw           = reordered(triangle, order);
-    FullMatrix<double>   ccw_stiffness = basic_stiffness(ccw, material);
-    ccw_stiffness.add(higher_order_scale,
+    const auto           order = counter_clockwise_order(triangle);
+    const PlanarTriangle ccw   = reordered(triangle, order);
+    FullMatrix<double>   ccw_stiffness =
+        basic_stiffness(ccw, material, scales.basic_drilling);
+    ccw_stiffness.add(scales.higher_order,
                       higher_order_stiffness(ccw, material));
 
     FullMatrix<double> stiffness(membrane_dofs, membrane_dofs);
@@ -267,7 +273,8 @@ namespace coshell::element
 
   MembraneForces andes_membrane_forces(const PlanarTriangle        &triangle,
                                        const ShellMaterial         &material,
-                                       const MembraneDisplacements &dofs)
+                                       const MembraneDisplacements &dofs,
+                                       const AndesScales           &scales)
   {
     const auto            order = counter_clockwise_order(triangle);
     MembraneDisplacements ccw_dofs;
@@ -276,7 +283,8 @@ namespace coshell::element
 
     Vector<double> forces(3);
     membrane_material(material).vmult(
-        forces, basic_strain(reordered(triangle, order), ccw_dofs));
+        forces, basic_strain(reordered(triangle, order), ccw_dofs,
+                             scales.basic_drilling));
     return {{forces(0), forces(1), forces(2)}};
   }
 } // namespace coshell::element

@@ -60,20 +60,21 @@ namespace coshell::element
                                           const ShellElementOptions &options)
     {
       if (*options.membrane == MembraneElement::andes)
-        return andes_stiffness(triangle, material, options.higher_order_scale);
+        return andes_stiffness(triangle, material, options.andes_scales);
       FullMatrix<double> membrane = cst_stiffness(triangle, material);
       add_drilling_penalty(triangle, material, options.drilling_factor,
                            membrane);
       return membrane;
     }
 
-    MembraneForces membrane_forces(MembraneElement              type,
+    MembraneForces membrane_forces(const ShellElementOptions   &options,
                                    const PlanarTriangle        &triangle,
                                    const ShellMaterial         &material,
                                    const MembraneDisplacements &dofs)
     {
-      return type == MembraneElement::andes
-                 ? andes_membrane_forces(triangle, material, dofs)
+      return *options.membrane == MembraneElement::andes
+                 ? andes_membrane_forces(triangle, material, dofs,
+                                         options.andes_scales)
                  : cst_membrane_forces(triangle, material, dofs);
     }
   } // namespace
@@ -159,7 +160,7 @@ namespace coshell::element
     ShellResultants result;
     if (options.membrane)
       result.membrane_local =
-          membrane_forces(*options.membrane, frame.planar, material,
+          membrane_forces(options, frame.planar, material,
                           sub_element_dofs(local, membrane_components));
     if (options.bending)
       result.bending_local =

@@ -60,16 +60,22 @@ namespace coshell::model
                       "k = factor * E h A / 3 (see doc/theory.md). Used by "
                       "the cst membrane only.");
     prm.declare_entry(
-        "ANDES curvature scaling", "3", Patterns::Double(0),
+        "ANDES curvature scaling", "10", Patterns::Double(0),
         "Dimensionless constant c of the andes membrane's higher-order "
         "stiffness on a curved mesh: each triangle's K_h is multiplied by "
         "1 / (1 + c l^2 phi^2 / h^2), l^2 the mean squared edge length, h "
         "the thickness and phi the largest angle between the triangle's "
         "normal and the mean normals at its vertices. On a faceted curved "
-        "surface K_h charges part of the bending rotation as drilling at "
-        "membrane stiffness and locks (91 % too stiff on the 4 x 4 pinched "
+        "surface the drilling terms charge part of the bending rotation at "
+        "membrane stiffness and lock (91 % too stiff on the 4 x 4 pinched "
         "hemisphere); flat meshes keep factor 1. 0: Felippa's optimal "
         "element everywhere (see doc/theory.md).");
+    prm.declare_entry(
+        "ANDES basic drilling scaling", "0.1", Patterns::Double(0),
+        "Dimensionless constant c_b of the same form for the Allman drilling "
+        "weight alpha_b = 3/2 of the andes membrane's basic stiffness: "
+        "alpha_b / (1 + c_b l^2 phi^2 / h^2) per triangle. 0: alpha_b = 3/2 "
+        "everywhere (see doc/theory.md).");
     prm.leave_subsection();
   }
 
@@ -121,6 +127,8 @@ namespace coshell::model
                             : element::BendingElement::przemieniecki;
     options.drilling_factor = prm.get_double("Drilling stiffness factor");
     andes_curvature_scaling = prm.get_double("ANDES curvature scaling");
+    andes_basic_drilling_scaling =
+        prm.get_double("ANDES basic drilling scaling");
     prm.leave_subsection();
     if (!options.membrane && !options.bending)
       throw std::invalid_argument("subsection Element: Membrane element and "

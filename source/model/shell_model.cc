@@ -140,17 +140,20 @@ namespace coshell::model
     return cell_materials_[cell->active_cell_index()];
   }
 
-  // On a faceted curved surface the ANDES higher-order stiffness K_h reads
-  // part of a facet's bending rotation as drilling (the facet's normal is
-  // off its vertices' mean normals by phi) and charges it at membrane
-  // stiffness, E h: relative to bending that is (l phi / h)^2, which locks
-  // coarse curved meshes. K_h / (1 + c (l phi / h)^2) removes the locking
-  // and keeps Felippa's element (factor 1) on flat meshes.
+  // On a faceted curved surface a facet's normal is off its vertices' mean
+  // normals by phi, so part of the bending rotation reads as drilling, and
+  // the ANDES drilling terms (the higher-order stiffness K_h and the Allman
+  // weight alpha_b of K_b) charge it at membrane stiffness, E h: relative
+  // to bending that is (l phi / h)^2, which locks coarse curved meshes.
+  // Each term is divided by 1 + c (l phi / h)^2 with its own c; flat meshes
+  // keep Felippa's element (factors 1).
   void ShellModel::assign_cell_options()
   {
     cell_options_.assign(surface_.n_active_cells(), element_.options);
-    const double c = element_.andes_curvature_scaling;
-    if (c == 0 || element_.options.membrane != element::MembraneElement::andes)
+    const double c_higher = element_.andes_curvature_scaling;
+    const double c_basic  = element_.andes_basic_drilling_scaling;
+    if ((c_higher == 0 && c_basic == 0) ||
+        element_.options.membrane != element::MembraneElement::andes)
       return;
     // Area-weighted mean of the oriented cell normals at each vertex.
     std::vector<Tensor<1, 3>> vertex_normal(surface_.n_vertices());
@@ -171,9 +174,11 @@ namespace coshell::model
         phi_sq = std::max(phi_sq, 2.0 * (1.0 - cosine)); // ~ phi^2
         edge_sq += (corners[(v + 1) % 3] - corners[v]).norm_square() / 3.0;
       }
-      const double h = material(cell).thickness;
-      cell_options_[cell->active_cell_index()].higher_order_scale =
-          1.0 / (1.0 + c * edge_sq * phi_sq / (h * h));
+      const double h       = material(cell).thickness;
+      const double locking = edge_sq * phi_sq / (h * h);
+      auto &scales = cell_options_[cell->active_cell_index()].andes_scales;
+      scales.higher_order   = 1.0 / (1.0 + c_higher * locking);
+      scales.basic_drilling = 1.0 / (1.0 + c_basic * locking);
     }
   }
 

@@ -16,6 +16,12 @@ that a test states its own independent reference.
       [--max-iterations N] [--min-iterations N]
                                      bounds on linear_solver_iterations
                                      (Krylov iterations; deterministic)
+      [--no-coarser-than SETTING QOI REFERENCE]
+                                     runs the scene again with --set SETTING
+                                     (into OUTPUT.baseline) and asserts, level
+                                     by level of convergence.csv, that QOI's
+                                     error against REFERENCE is no larger
+                                     than that run's
 """
 import argparse
 import csv
@@ -29,18 +35,44 @@ import sys
 from scene_runner import add_scene_arguments
 
 
-def run_coshell(args):
-    if os.path.isdir(args.output):
-        shutil.rmtree(args.output)
-    command = [args.coshell, args.prm, "--output", args.output]
-    for assignment in args.set:
+def run_coshell(args, output=None, extra_settings=()):
+    output = output or args.output
+    if os.path.isdir(output):
+        shutil.rmtree(output)
+    command = [args.coshell, args.prm, "--output", output]
+    for assignment in list(args.set) + list(extra_settings):
         command += ["--set", assignment]
     print("running:", " ".join(repr(c) for c in command), flush=True)
     result = subprocess.run(command)
     if result.returncode != 0:
         sys.exit(f"FAIL: coshell exited with status {result.returncode}")
-    with open(os.path.join(args.output, "summary.json")) as f:
+    with open(os.path.join(output, "summary.json")) as f:
         return json.load(f)
+
+
+def level_errors(output, qoi, reference):
+    with open(os.path.join(output, "convergence.csv")) as f:
+        return [abs(float(row[qoi]) - reference) / abs(reference)
+                for row in csv.DictReader(f)]
+
+
+def check_no_coarser(args, setting, qoi, reference):
+    """Level by level, this run's error is at most the error of the same
+    scene run with SETTING (another element, say)."""
+    baseline = args.output + ".baseline"
+    run_coshell(args, baseline, [setting])
+    ours = level_errors(args.output, qoi, float(reference))
+    theirs = level_errors(baseline, qoi, float(reference))
+    failures = []
+    for level, (mine, other) in enumerate(zip(ours, theirs)):
+        passed = mine <= other
+        print(f"{qoi} level {level}: relative error {mine:.4e} against "
+              f"{other:.4e} with {setting} {'ok' if passed else 'FAIL'}")
+        if not passed:
+            failures.append(f"{qoi} level {level} coarser than with {setting}")
+    if len(ours) != len(theirs):
+        failures.append("the two runs have different numbers of levels")
+    return failures
 
 
 def check_values(summary, checks, within):
@@ -116,6 +148,8 @@ def main():
     parser.add_argument("--min-self-order", type=float)
     parser.add_argument("--min-iterations", type=int)
     parser.add_argument("--max-iterations", type=int)
+    parser.add_argument("--no-coarser-than", nargs=3, action="append",
+                        default=[], metavar=("SETTING", "QOI", "REFERENCE"))
     args = parser.parse_args()
 
     summary = run_coshell(args)
@@ -125,10 +159,13 @@ def main():
         failures += check_rate(args.output, args.min_rate, args.max_rate)
     if args.min_self_order is not None:
         failures += check_self_order(args.output, args.min_self_order)
+    for setting, qoi, reference in args.no_coarser_than:
+        failures += check_no_coarser(args, setting, qoi, reference)
     iteration_bounds = (args.min_iterations, args.max_iterations)
     if iteration_bounds != (None, None):
         failures += check_iterations(summary, *iteration_bounds)
     checks = (len(args.value) + len(args.error_above) +
+              len(args.no_coarser_than) +
               sum(x is not None for x in (args.min_self_order, args.min_rate, args.max_rate,
                                           args.min_iterations, args.max_iterations)))
     print(f"{checks - len(failures)} passed, {len(failures)} failed")

@@ -280,7 +280,51 @@ TEST(Andes, MembraneForcesOfALinearFieldAreExact)
 // the interior node reproduces u, v and theta_z, every element the forces.
 TEST(Andes, PassesPatchTestOnDistortedPatch)
 {
-  expect_membrane_patch_test(andes_kernel, andes_membrane_forces);
+  const auto forces = [](const PlanarTriangle        &triangle,
+                         const ShellMaterial         &material,
+                         const MembraneDisplacements &dofs)
+  { return andes_membrane_forces(triangle, material, dofs); };
+  expect_membrane_patch_test(andes_kernel, forces);
+}
+
+// The drilling scales ShellModel applies on curved meshes (doc/theory.md
+// 14) keep what the template guarantees for any alpha_b and any multiple
+// of K_h: the patch test, and the three rigid modes as the only zero modes.
+TEST(Andes, ScaledDrillingTermsKeepThePatchTestAndTheRank)
+{
+  for (const AndesScales scales :
+       {AndesScales{0.3, 0.5}, AndesScales{1e-3, 0.02}, AndesScales{1, 0}})
+  {
+    const auto stiffness =
+        [&](const PlanarTriangle &triangle, const ShellMaterial &material)
+    { return andes_stiffness(triangle, material, scales); };
+    const auto forces = [&](const PlanarTriangle        &triangle,
+                            const ShellMaterial         &material,
+                            const MembraneDisplacements &dofs)
+    { return andes_membrane_forces(triangle, material, dofs, scales); };
+    expect_membrane_patch_test(stiffness, forces);
+
+    const auto eigenvalues =
+        symmetric_eigenvalues(stiffness(generic_triangle, test_material()));
+    for (unsigned int i = 0; i < 3; ++i)
+      EXPECT_LT(std::abs(eigenvalues[i]), 1e-12 * eigenvalues.back());
+    EXPECT_GT(eigenvalues[3], 1e-8 * eigenvalues.back())
+        << "scales " << scales.higher_order << ", " << scales.basic_drilling;
+  }
+}
+
+// alpha_b = 0 removes the Allman bubble: the basic part is then the
+// constant-strain triangle, with no drilling stiffness at all.
+TEST(Andes, ZeroDrillingWeightsGiveTheConstantStrainTriangle)
+{
+  const FullMatrix<double> scaled =
+      andes_stiffness(generic_triangle, test_material(), AndesScales{0, 0});
+  const FullMatrix<double> cst =
+      cst_stiffness(generic_triangle, test_material());
+  for (unsigned int a = 0; a < 9; ++a)
+    for (unsigned int b = 0; b < 9; ++b)
+      EXPECT_NEAR(scaled(a, b), cst(a, b), 1e-12 * cst.linfty_norm())
+          << a << ", " << b;
 }
 
 // The defining property of the optimal element (Felippa 2003, Sec. 5):

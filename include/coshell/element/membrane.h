@@ -57,15 +57,27 @@ namespace coshell::element
   /// nothing), passes the patch test, and a rectangle of two triangles
   /// stores the exact energy in in-plane pure bending for any aspect ratio.
   /// Either vertex order. Throws DegenerateTriangle like the CST.
-  /// higher_order_scale multiplies K_h (ShellElementOptions).
+  /// Dimensionless multipliers of the ANDES membrane's drilling terms: 1
+  /// and 1 is Felippa's optimal element. ShellModel lowers both on the
+  /// facets of a curved mesh, where they lock (doc/theory.md, section 14).
+  struct AndesScales
+  {
+    double higher_order   = 1.0; ///< multiplies K_h
+    double basic_drilling = 1.0; ///< multiplies alpha_b of K_b
+  };
+
+  /// `scales` multiply K_h and alpha_b (ShellElementOptions). With
+  /// alpha_b scaled the basic part still passes the patch test (alpha_b is a
+  /// free parameter of the template; 0 makes K_b the CST's).
   FullMatrix<double> andes_stiffness(const PlanarTriangle &triangle,
                                      const ShellMaterial  &material,
-                                     double higher_order_scale = 1.0);
+                                     const AndesScales    &scales = {});
 
   /// Centroidal membrane forces of the ANDES triangle: the constant stress
   /// of the basic part, N = C L^T u / A. The higher-order strains only
   /// stabilise the element; they are not reported.
   MembraneForces andes_membrane_forces(const PlanarTriangle        &triangle,
                                        const ShellMaterial         &material,
-                                       const MembraneDisplacements &dofs);
+                                       const MembraneDisplacements &dofs,
+                                       const AndesScales &scales = {});
 } // namespace coshell::element

@@ -22,10 +22,11 @@ namespace coshell::element
     /// Dimensionless size of the drilling penalty (see add_drilling_penalty);
     /// used by the CST only.
     double drilling_factor = 1e-3;
-    /// Dimensionless multiplier of the ANDES membrane's higher-order
-    /// stiffness K_h: 1 is Felippa's optimal element. ShellModel lowers it
-    /// on the facets of a curved mesh, where K_h locks (doc/theory.md).
-    double higher_order_scale = 1.0;
+    /// Multipliers of the ANDES membrane's higher-order stiffness and of
+    /// its basic drilling weight: 1 is Felippa's optimal element.
+    /// ShellModel lowers them on the facets of a curved mesh, where the
+    /// drilling terms lock (doc/theory.md, section 14).
+    AndesScales andes_scales;
   };
 
   /// Number of DOFs of the flat shell triangle: 3 vertices x (u_x, u_y,

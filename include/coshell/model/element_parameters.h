@@ -33,7 +33,9 @@ namespace coshell::model
     Formulation                  formulation = Formulation::linear;
     /// c of the ANDES higher-order scaling 1 / (1 + c l^2 phi^2 / h^2),
     /// applied per triangle by ShellModel (dimensionless; 0: none).
-    double andes_curvature_scaling = 3.0;
+    double andes_curvature_scaling = 10.0;
+    /// The same for the Allman drilling weight alpha_b of the basic part.
+    double andes_basic_drilling_scaling = 0.1;
 
     static void declare_parameters(dealii::ParameterHandler &prm);
     /// Throws std::invalid_argument naming the parameter for non-physical

@@ -166,7 +166,7 @@ namespace coshell::model
     std::vector<double>                       vertex_thickness_;
 
     void number_vertex_dofs();
-    /// cell_options_, with each triangle's ANDES higher-order scale.
+    /// cell_options_, with each triangle's ANDES drilling scales.
     void assign_cell_options();
     /// On several ranks: numbers DoFs part by part (the mesh's subdomain
     /// ids), so each rank owns a contiguous range.
