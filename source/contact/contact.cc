@@ -30,7 +30,8 @@ namespace coshell::contact
   } // namespace
 
   Contact::Contact(const model::ShellModel &model,
-                   const ContactParameters &parameters)
+                   const ContactParameters &parameters,
+                   double                   load_pressure)
       : model_(model), parameters_(parameters),
         largest_thickness_(model.thickness_range().second)
   {
@@ -42,11 +43,8 @@ namespace coshell::contact
     activation_           = parameters_.activation_distance > 0
                                 ? parameters_.activation_distance
                                 : 0.1 * thinnest;
-    kappa_ =
-        parameters_.barrier_stiffness > 0
-            ? parameters_.barrier_stiffness
-            : material.youngs_modulus /
-                  (mean * log_barrier(0.5 * activation_, activation_).second);
+    kappa_ = automatic_barrier_stiffness(material.youngs_modulus / mean,
+                                         load_pressure);
     if (parameters_.penalty_stiffness <= 0)
       parameters_.penalty_stiffness = material.youngs_modulus / mean;
     if (parameters_.penalty_smoothing <= 0)
@@ -239,6 +237,24 @@ namespace coshell::contact
   double Contact::largest_penetration() const
   {
     return largest_penetration_;
+  }
+
+  // kappa from a pressure scale p: as stiff as p / (d/2) at half the
+  // activation distance d (material), or carrying p there (load).
+  double Contact::automatic_barrier_stiffness(double stiffness_per_area,
+                                              double load_pressure) const
+  {
+    if (parameters_.barrier_stiffness > 0)
+      return parameters_.barrier_stiffness;
+    const ScalarDerivatives b = log_barrier(0.5 * activation_, activation_);
+    if (!parameters_.barrier_stiffness_from_load)
+      return stiffness_per_area / b.second;
+    if (!(load_pressure > 0))
+      throw std::invalid_argument(
+          "subsection Contact: Barrier stiffness scale = load needs a dead "
+          "load (Loads: gravity, pressure, point or edge forces); this "
+          "scene has none. Use material, or set Barrier stiffness");
+    return load_pressure / std::abs(b.first);
   }
 
   double Contact::barrier_stiffness() const

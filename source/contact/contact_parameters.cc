@@ -30,6 +30,19 @@ namespace coshell::contact
         "that the barrier at half the activation distance d is as stiff as "
         "the shell across its half thickness. Doubled after a step whose "
         "smallest gap falls below Stiffening gap ratio * d.");
+    prm.declare_entry(
+        "Barrier stiffness scale", "material",
+        Patterns::Selection("material|load"),
+        "Barrier, with Barrier stiffness = 0: what sets kappa (a choice, no "
+        "unit). material: E / (h b''(d/2)), above, for contact pressures "
+        "of the order of the shell's own stiffness (folding, pushing). "
+        "load: q / |b'(d/2)|, q the mean dead load per area of the shell "
+        "(N/mm^2: the magnitudes of the vertex forces of gravity, pressure, "
+        "point and edge forces, over the shell's area), so that the barrier "
+        "carries the scene's own load at half the activation distance: for "
+        "a shell resting on an obstacle or on itself under a light load, "
+        "which the material scale would float at the barrier's edge, where "
+        "its stiffness vanishes. Both are doubled as above.");
     prm.declare_entry("Stiffening gap ratio", "1e-3", Patterns::Double(0, 1),
                       "Barrier: see Barrier stiffness (dimensionless).");
     prm.declare_entry("Penalty stiffness", "0", Patterns::Double(0),
@@ -126,25 +139,26 @@ namespace coshell::contact
                                            const std::string &prm_directory)
   {
     prm.enter_subsection("Contact");
-    const std::string name   = prm.get("Method");
-    method                   = name == "barrier"   ? Method::barrier
-                               : name == "penalty" ? Method::penalty
-                                                   : Method::none;
-    activation_distance      = prm.get_double("Activation distance");
-    barrier_stiffness        = prm.get_double("Barrier stiffness");
-    stiffening_gap_ratio     = prm.get_double("Stiffening gap ratio");
-    penalty_stiffness        = prm.get_double("Penalty stiffness");
-    penalty_smoothing        = prm.get_double("Penalty smoothing");
-    penalty_step_filter      = prm.get_double("Penalty step filter");
-    project_tangent          = prm.get_bool("Projected tangent");
-    project_tangent_on_retry = prm.get_bool("Projected tangent on retry");
-    project_tangent_on_stall = prm.get_bool("Projected tangent on stall");
-    stiction_velocity        = prm.get_double("Stiction velocity");
-    stiction_displacement    = prm.get_double("Stiction displacement");
-    local_minima_only        = prm.get("Pairs") == "local minima";
-    self_contact             = prm.get_bool("Self contact");
-    edge_edge_pairs          = prm.get_bool("Edge-edge pairs");
-    self_exclusion           = prm.get_double("Self contact exclusion");
+    const std::string name      = prm.get("Method");
+    method                      = name == "barrier"   ? Method::barrier
+                                  : name == "penalty" ? Method::penalty
+                                                      : Method::none;
+    activation_distance         = prm.get_double("Activation distance");
+    barrier_stiffness           = prm.get_double("Barrier stiffness");
+    barrier_stiffness_from_load = prm.get("Barrier stiffness scale") == "load";
+    stiffening_gap_ratio        = prm.get_double("Stiffening gap ratio");
+    penalty_stiffness           = prm.get_double("Penalty stiffness");
+    penalty_smoothing           = prm.get_double("Penalty smoothing");
+    penalty_step_filter         = prm.get_double("Penalty step filter");
+    project_tangent             = prm.get_bool("Projected tangent");
+    project_tangent_on_retry    = prm.get_bool("Projected tangent on retry");
+    project_tangent_on_stall    = prm.get_bool("Projected tangent on stall");
+    stiction_velocity           = prm.get_double("Stiction velocity");
+    stiction_displacement       = prm.get_double("Stiction displacement");
+    local_minima_only           = prm.get("Pairs") == "local minima";
+    self_contact                = prm.get_bool("Self contact");
+    edge_edge_pairs             = prm.get_bool("Edge-edge pairs");
+    self_exclusion              = prm.get_double("Self contact exclusion");
     self_friction_coefficient =
         prm.get_double("Self contact friction coefficient");
     if (!(self_friction_coefficient >= 0))

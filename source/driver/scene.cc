@@ -397,6 +397,23 @@ namespace coshell::driver
       return contributions;
     }
 
+    /// The magnitudes of the dead loads' vertex forces over the shell's
+    /// area, N/mm^2 (Contact/Barrier stiffness scale = load).
+    double mean_dead_load_pressure(const model::ShellModel &model,
+                                   const model::Loads      &loads)
+    {
+      dealii::Vector<double> force(model.n_dofs());
+      std::ostringstream     quiet; // the run's log already names the vertices
+      loads.assemble(model, force, quiet);
+      double total = 0, area = 0;
+      for (unsigned int v = 0; v < model.surface().n_vertices(); ++v)
+        total +=
+            model::vertex_block(force, model.vertex_dofs(v), model::ux).norm();
+      for (const auto &cell : model.dof_handler().active_cell_iterators())
+        area += element::area(model.triangle(cell));
+      return total / area;
+    }
+
     std::string non_symmetric_reason(const model::ShellProblem &problem)
     {
       return problem.symmetric_tangent()
@@ -893,7 +910,8 @@ namespace coshell::driver
     std::unique_ptr<contact::Contact> contact;
     if (contact_.enabled())
     {
-      contact = std::make_unique<contact::Contact>(model, contact_);
+      contact = std::make_unique<contact::Contact>(
+          model, contact_, mean_dead_load_pressure(model, loads_));
       contact->check_initial_configuration(state, 0);
       out.contact = contact.get();
       out.contact_forces.emplace(

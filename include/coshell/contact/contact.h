@@ -36,6 +36,8 @@ namespace coshell::contact
     double activation_distance = 0;
     /// Barrier (N/mm^3 in mm, N; energy per area per length^2); 0 = auto.
     double barrier_stiffness = 0;
+    /// Automatic barrier stiffness from the dead load instead of E / h.
+    bool barrier_stiffness_from_load = false;
     /// Penalty: pressure per penetration (N/mm^3); 0 = automatic.
     double penalty_stiffness = 0;
     /// Penalty: penetration over which the penalty's stiffness ramps up.
@@ -99,8 +101,11 @@ namespace coshell::contact
   class Contact
   {
   public:
+    /// 'load_pressure': the mean dead load per area of the shell (N/mm^2),
+    /// used by Barrier stiffness scale = load.
     Contact(const model::ShellModel &model,
-            const ContactParameters &parameters);
+            const ContactParameters &parameters,
+            double                   load_pressure = 0);
 
     /// Throws, naming the obstacle and the shell vertex or triangle, if the
     /// shell at 'time' is closer to an obstacle than its offset.
@@ -334,6 +339,8 @@ namespace coshell::contact
 
     /// Half the thickness of the pair's shell vertex, triangle or edge
     /// plus the obstacle's offset: the distance the pair must keep.
+    double automatic_barrier_stiffness(double stiffness_per_area,
+                                       double load_pressure) const;
     double offset(const Pair &pair) const;
     /// The same for shell edge e (the mean of its vertices' offsets).
     double edge_offset(unsigned int obstacle, unsigned int e) const;
