@@ -854,6 +854,9 @@ namespace coshell::driver
     const auto on_iteration =
         [&](unsigned int, const solvers::NewtonIteration &record)
     {
+      // Also between iterations: one step of a large scene can take
+      // minutes, and a stop request should not wait for it.
+      stop_if_interrupted_in_static_stage();
       out.history.row({double(out.step + 1), double(record.iteration),
                        problem.load_factor(), record.relative_residual,
                        record.correction_norm, record.relative_energy});
