@@ -87,9 +87,18 @@ coshell_mpi_test(plate_on_plane_mumps contact/plate_on_plane.prm amesos-mumps
 # with UMFPACK and one with MUMPS (tip_ux -5.28334 against -5.28442).
 coshell_mpi_test(self_contact_plate_on_plate_mumps contact/plate_on_plate.prm
                  amesos-mumps)
+# The roll-up's statics pins extrapolated forces throughout: with the
+# default (auto) its one failed step (load factor 0.974) returns the rest
+# of the stage to the exact tangent, whose last step converges linearly
+# and stops at a relative residual of 6.8e-8 against the tolerance 1e-7;
+# the tip rotation of 1 and 2 ranks then differs by 2.8e-10 (the values
+# differ in the 10th digit either way; 219 corrections against 212). That
+# is round-off of a residual at its floor, not a rank effect; the
+# tolerance is not changed and the test keeps the path it was made for.
 coshell_mpi_test(self_contact_rollup_statics_mumps
                  contact/self_contact_rollup.prm amesos-mumps
-                 --set "Stage 2/Analysis type=none")
+                 --set "Stage 2/Analysis type=none"
+                 --set "Nonlinear solver/Geometric stiffness=extrapolated forces")
 # The application on two ranks: the IOL injection's fold stage (coarse
 # lens, 98 time steps, 731 Newton iterations): self contact, the
 # cartridge's wings, rod and plunger with friction, all through the

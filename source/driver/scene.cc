@@ -387,11 +387,13 @@ namespace coshell::driver
                          model::Formulation           kinematics,
                          element::CorotationalTangent tangent,
                          bool                         extrapolated_forces,
+                         bool                         exact_after_failure,
                          std::ostream                &log)
     {
       std::vector<std::unique_ptr<model::Contribution>> contributions;
       contributions.push_back(std::make_unique<model::InternalForce>(
-          model, kinematics, tangent, extrapolated_forces));
+          model, kinematics, tangent, extrapolated_forces,
+          exact_after_failure));
       contributions.push_back(std::make_unique<model::ExternalLoads>(
           model, loads, kinematics == model::Formulation::corotational, log));
       return contributions;
@@ -940,7 +942,8 @@ namespace coshell::driver
       const bool dynamic       = stage.analysis == "dynamic";
       auto       contributions = static_contributions(
                 model, loads_, element_.formulation, path_following_.tangent(),
-                path_following_.extrapolated_geometric_stiffness(dynamic), log);
+                path_following_.extrapolated_geometric_stiffness(dynamic),
+                path_following_.exact_tangent_after_failure(), log);
       if (dynamic)
         contributions.push_back(std::make_unique<model::Inertia>(
             model, inertia_, time_integration_.se3()));

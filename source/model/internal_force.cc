@@ -18,11 +18,13 @@ namespace coshell::model
   InternalForce::InternalForce(const ShellModel            &model,
                                Formulation                  kinematics,
                                element::CorotationalTangent tangent,
-                               bool                         extrapolated_forces)
+                               bool                         extrapolated_forces,
+                               bool                         exact_after_failure)
       : model_(model), kinematics_(kinematics), tangent_(tangent),
         extrapolate_(extrapolated_forces &&
                      kinematics == Formulation::corotational &&
-                     tangent != element::CorotationalTangent::paper)
+                     tangent != element::CorotationalTangent::paper),
+        exact_after_failure_(exact_after_failure)
   {
     if (kinematics_ != Formulation::corotational)
       return;
@@ -42,6 +44,7 @@ namespace coshell::model
   void InternalForce::restore()
   {
     forget_history();
+    a_step_failed_ = true;
   }
 
   void InternalForce::forget_history()
@@ -153,7 +156,8 @@ namespace coshell::model
     element::ShellDisplacements force;
     // Reused: an 18 x 18 allocation per cell and evaluation showed.
     thread_local FullMatrix<double> tangent;
-    if (!with_tangent || !extrapolate_)
+    if (!with_tangent || !extrapolate_ ||
+        (exact_after_failure_ && a_step_failed_))
       corotational_[index].internal_force(triangle, rotations, tangent_, force,
                                           with_tangent ? &tangent : nullptr);
     else

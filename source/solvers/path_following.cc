@@ -41,7 +41,8 @@ namespace coshell::solvers
         "Magisano, Leonetti & Garcea (2017): the same solution, the same "
         "residual, far fewer iterations on thin shells, where a "
         "correction's spurious membrane forces spoil the next tangent. "
-        "auto: extrapolated forces in static analyses, current forces in "
+        "auto: extrapolated forces in static analyses until a step fails, "
+        "then current forces for the rest of the stage; current forces in "
         "dynamic ones (measured: doc/performance.md, \"Extrapolated "
         "forces in the geometric stiffness\").");
     prm.declare_entry("Load steps", "10", Patterns::Integer(1),
@@ -102,6 +103,11 @@ namespace coshell::solvers
     if (geometric_stiffness_ == "auto")
       return !dynamic;
     return geometric_stiffness_ == "extrapolated forces";
+  }
+
+  bool PathFollowing::exact_tangent_after_failure() const
+  {
+    return geometric_stiffness_ == "auto";
   }
 
   const std::string &PathFollowing::method() const

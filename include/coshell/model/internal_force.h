@@ -23,10 +23,14 @@ namespace coshell::model
     /// either way. begin_solve() and restore() forget the previous
     /// evaluations: a step starts from the exact forces, so that a run
     /// restarted from a checkpoint takes the uninterrupted run's iterates.
+    /// With 'exact_after_failure' (Geometric stiffness = auto), once
+    /// restore() has been called (a step failed) the rest of the stage
+    /// uses the current forces, the exact tangent.
     InternalForce(const ShellModel            &model,
                   Formulation                  kinematics,
                   element::CorotationalTangent tangent,
-                  bool                         extrapolated_forces = false);
+                  bool                         extrapolated_forces = false,
+                  bool                         exact_after_failure = false);
 
     std::string name() const override;
     ForceKind   kind() const override;
@@ -63,7 +67,13 @@ namespace coshell::model
       element::CorotationalLinearization linearization;
       element::ShellDisplacements        geometric_dofs{};
     };
-    bool                                extrapolate_ = false;
+    bool extrapolate_ = false;
+    /// The extrapolation is a first-order model; where a step of the
+    /// stage has failed, Newton is in a regime it can mislead (the whole
+    /// roll-up in one step: 90 corrections with it, 71 without), so the
+    /// rest of the stage takes the exact tangent.
+    bool                                exact_after_failure_ = false;
+    bool                                a_step_failed_       = false;
     mutable std::vector<TangentHistory> history_;
 
     void forget_history();

@@ -46,9 +46,12 @@ namespace coshell::solvers
     /// Whether the co-rotational tangent's geometric terms use the local
     /// forces extrapolated from the previous Newton iterate (see
     /// "Geometric stiffness"), in a dynamic analysis or a static one.
-    bool               extrapolated_geometric_stiffness(bool dynamic) const;
-    const std::string &method() const;
-    bool               arc_length() const;
+    bool extrapolated_geometric_stiffness(bool dynamic) const;
+    /// Whether a failed step returns the rest of its stage to the exact
+    /// tangent (Geometric stiffness = auto).
+    bool                    exact_tangent_after_failure() const;
+    const std::string      &method() const;
+    bool                    arc_length() const;
     const NewtonParameters &newton() const;
 
   private:
