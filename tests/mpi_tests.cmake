@@ -92,7 +92,7 @@ coshell_mpi_test(self_contact_plate_on_plate_mumps contact/plate_on_plate.prm
 # of the stage to the exact tangent, whose last step converges linearly
 # and stops at a relative residual of 6.8e-8 against the tolerance 1e-7;
 # the tip rotation of 1 and 2 ranks then differs by 2.8e-10 (the values
-# differ in the 10th digit either way; 219 corrections against 212). That
+# differ in the 10th digit either way; 219 corrections against 216). That
 # is round-off of a residual at its floor, not a rank effect; the
 # tolerance is not changed and the test keeps the path it was made for.
 coshell_mpi_test(self_contact_rollup_statics_mumps
