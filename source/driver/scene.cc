@@ -409,8 +409,9 @@ namespace coshell::driver
       loads.assemble(model, force, quiet);
       double total = 0, area = 0;
       for (unsigned int v = 0; v < model.surface().n_vertices(); ++v)
-        total +=
-            model::vertex_block(force, model.vertex_dofs(v), model::ux).norm();
+        if (model.vertex_is_used(v))
+          total += model::vertex_block(force, model.vertex_dofs(v), model::ux)
+                       .norm();
       for (const auto &cell : model.dof_handler().active_cell_iterators())
         area += element::area(model.triangle(cell));
       return total / area;
