@@ -917,7 +917,10 @@ namespace coshell::driver
     if (contact_.enabled())
     {
       contact = std::make_unique<contact::Contact>(
-          model, contact_, mean_dead_load_pressure(model, loads_));
+          model, contact_,
+          contact_.barrier_stiffness_from_load
+              ? mean_dead_load_pressure(model, loads_)
+              : 0.0);
       contact->check_initial_configuration(state, 0);
       out.contact = contact.get();
       out.contact_forces.emplace(

@@ -291,7 +291,9 @@ namespace coshell::model
     trimmed_ = block.matrix;
     for (unsigned int i = 0; i < block.dofs.size(); ++i)
       for (unsigned int j = 0; j < block.dofs.size(); ++j)
-        if (!solvers::stores_entry(sparsity_, block.dofs[i], block.dofs[j]))
+        // operator() bisects the sorted row; exists() would scan it.
+        if (sparsity_(block.dofs[i], block.dofs[j]) ==
+            SparsityPattern::invalid_entry)
           trimmed_(i, j) = 0;
     return trimmed_;
   }

@@ -105,27 +105,4 @@ namespace coshell::solvers
     if (rows_.is_element(row))
       matrix_.add(row, column, value);
   }
-
-  bool stores_entry(const SparsityPattern        &pattern,
-                    const types::global_dof_index row,
-                    const types::global_dof_index column)
-  {
-    const bool diagonal_first = pattern.n_rows() == pattern.n_cols();
-    if (diagonal_first && row == column)
-      return true;
-    std::size_t first = diagonal_first ? 1 : 0;
-    std::size_t last  = pattern.row_length(row);
-    while (first < last)
-    {
-      const std::size_t middle = first + (last - first) / 2;
-      const auto        entry  = pattern.column_number(row, middle);
-      if (entry == column)
-        return true;
-      if (entry < column)
-        first = middle + 1;
-      else
-        last = middle;
-    }
-    return false;
-  }
 } // namespace coshell::solvers

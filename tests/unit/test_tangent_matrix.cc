@@ -105,25 +105,3 @@ TEST(TangentMatrix, BuildsAFreshMatrixOnItsPatternOnceTheLastIsTaken)
   EXPECT_EQ(tangent.trilinos().el(2, 3), 0.0);
   EXPECT_THROW(tangent.serial(), std::logic_error);
 }
-
-// The bisection that trims contact blocks to the tangent's pattern finds
-// exactly the entries SparsityPattern::exists() finds, on a square pattern
-// (diagonal stored first) and a rectangular one.
-TEST(StoresEntry, AgreesWithExists)
-{
-  for (const unsigned int columns : {37u, 50u})
-  {
-    DynamicSparsityPattern dsp(37, columns);
-    for (unsigned int i = 0; i < 37; ++i)
-      for (unsigned int j = 0; j < columns; ++j)
-        if ((7 * i + 3 * j) % 5 == 0 || i == j)
-          dsp.add(i, j);
-    SparsityPattern pattern;
-    pattern.copy_from(dsp);
-    for (unsigned int i = 0; i < 37; ++i)
-      for (unsigned int j = 0; j < columns; ++j)
-        EXPECT_EQ(coshell::solvers::stores_entry(pattern, i, j),
-                  pattern.exists(i, j))
-            << i << ", " << j << " of a 37 x " << columns << " pattern";
-  }
-}

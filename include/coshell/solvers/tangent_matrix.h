@@ -83,13 +83,4 @@ namespace coshell::solvers
     dealii::TrilinosWrappers::SparseMatrix &matrix_;
     const dealii::IndexSet                 &rows_;
   };
-
-  /// Whether 'pattern' stores the entry (row, column), by bisection: a
-  /// compressed SparsityPattern keeps each row's columns sorted, after the
-  /// diagonal when the pattern is square, where SparsityPattern::exists()
-  /// scans the row (rows that self contact couples to many vertices are
-  /// long).
-  bool stores_entry(const dealii::SparsityPattern  &pattern,
-                    dealii::types::global_dof_index row,
-                    dealii::types::global_dof_index column);
 } // namespace coshell::solvers
