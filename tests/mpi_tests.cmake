@@ -109,11 +109,18 @@ coshell_mpi_test(self_contact_rollup_statics_mumps
 # barrier tangent's conditioning: two serial runs that differ only in the
 # direct solver (UMFPACK or KLU against MUMPS) differ there by 3e-10 and
 # 5e-10 of its largest value, as the two-rank run does (6.7e-10). That
-# column alone is held to 1e-8.
+# column alone is held to 1e-8. The test pins the consistent tangent, the
+# scene's until 2026-11-26: with its symmetric part (the scene's since)
+# every converged quantity still agrees to 1e-12 or better, but the
+# unconverged iterates are further from round-off's reach: the smallest
+# gap differs by 1.5e-6 between 1 and 2 ranks, and by 9e-7 and 1e-7
+# between serial runs with UMFPACK or KLU and with MUMPS. A solver
+# effect, not a rank effect; the tolerance is not changed.
 coshell_mpi_test(iol_fold_mumps iol/injection.prm amesos-mumps
                  --set "Mesh/Gmsh parameters=optic_mesh_size = 0.9, haptic_mesh_size = 0.35"
                  --set "Stage 2/Analysis type=none"
                  --set "Stage 3/Analysis type=none"
+                 --set "Nonlinear solver/Tangent=consistent"
                  --iterate-tolerance 1e-8)
 
 # coshell_mpi_bad_input_test(NAME PATTERN RANKS coshell arguments...): the

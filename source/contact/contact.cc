@@ -2,9 +2,9 @@
 #include <coshell/contact/ccd.h>
 #include <coshell/contact/contact.h>
 #include <coshell/contact/distances.h>
+#include <coshell/solvers/stopwatch.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <set>
@@ -198,6 +198,7 @@ namespace coshell::contact
                  0),
           k);
     }
+    const solvers::Stopwatch watch(timing_.tree_build);
     return pack_rtree(boxes);
   }
 
@@ -278,28 +279,7 @@ namespace coshell::contact
   using namespace dealii;
   namespace bgi = boost::geometry::index;
 
-  namespace
-  {
-    /// Adds the seconds since its construction to 'total' when it ends.
-    class Stopwatch
-    {
-    public:
-      explicit Stopwatch(double &total)
-          : total_(total), start_(std::chrono::steady_clock::now())
-      {
-      }
-      ~Stopwatch()
-      {
-        total_ += std::chrono::duration<double>(
-                      std::chrono::steady_clock::now() - start_)
-                      .count();
-      }
-
-    private:
-      double                               &total_;
-      std::chrono::steady_clock::time_point start_;
-    };
-  } // namespace
+  using solvers::Stopwatch;
 
   bool Contact::filters_steps() const
   {

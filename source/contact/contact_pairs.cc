@@ -4,6 +4,7 @@
 #include <coshell/contact/barrier.h>
 #include <coshell/contact/contact.h>
 #include <coshell/contact/distances.h>
+#include <coshell/solvers/stopwatch.h>
 
 #include <algorithm>
 #include <chrono>
@@ -306,6 +307,7 @@ namespace coshell::contact
       box.extend(inflation);
       boxes.emplace_back(box, k);
     }
+    const solvers::Stopwatch watch(timing_.tree_build);
     return pack_rtree(boxes);
   }
 

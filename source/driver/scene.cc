@@ -989,7 +989,8 @@ namespace coshell::driver
                             {"activation_distance", contact->activation_distance()},
                             {"detection_s", timing.detection},
                             {"pair_terms_s", timing.pair_terms},
-                            {"collision_filter_s", timing.filter}};
+                            {"collision_filter_s", timing.filter},
+                            {"tree_build_s", timing.tree_build}};
     }
     if (out.time_history)
       out.time_history->finish();

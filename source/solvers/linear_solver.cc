@@ -1,6 +1,7 @@
 #include <coshell/solvers/cholmod_solver.h>
 #include <coshell/solvers/linear_solver.h>
 #include <coshell/solvers/parallel_environment.h>
+#include <coshell/solvers/stopwatch.h>
 #include <coshell/solvers/umfpack_solver.h>
 
 #include <deal.II/base/index_set.h>
@@ -212,23 +213,6 @@ namespace coshell::solvers
     prm.leave_subsection();
   }
 
-  namespace
-  {
-    /// Adds the wall time of a scope to a counter.
-    struct ScopeTimer
-    {
-      double                               &total;
-      std::chrono::steady_clock::time_point start =
-          std::chrono::steady_clock::now();
-      ~ScopeTimer()
-      {
-        total += std::chrono::duration<double>(
-                     std::chrono::steady_clock::now() - start)
-                     .count();
-      }
-    };
-  } // namespace
-
   double LinearSolver::seconds() const
   {
     return seconds_;
@@ -238,7 +222,7 @@ namespace coshell::solvers
                                bool                         symmetric,
                                const std::function<void()> &release_matrix)
   {
-    const ScopeTimer timer{seconds_};
+    const Stopwatch timer(seconds_);
     backend_->using_cholmod = method_ == "cholmod" && symmetric;
     if (backend_->using_cholmod)
     {
@@ -297,7 +281,7 @@ namespace coshell::solvers
 
   void LinearSolver::factorize(TrilinosWrappers::SparseMatrix &&matrix)
   {
-    const ScopeTimer timer{seconds_};
+    const Stopwatch timer(seconds_);
     AssertThrow(distributed() && matrix.locally_owned_range_indices() ==
                                      backend_->owned_rows,
                 ExcMessage("a distributed matrix needs the rows of "
@@ -431,7 +415,7 @@ namespace coshell::solvers
                            const Vector<double> &b,
                            Refinement            refinement)
   {
-    const ScopeTimer timer{seconds_};
+    const Stopwatch timer(seconds_);
     if (backend_->using_cholmod)
     {
       backend_->cholmod.solve(x, b);
