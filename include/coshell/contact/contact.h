@@ -202,9 +202,9 @@ namespace coshell::contact
     bool   use_projected_tangent();
     double barrier_stiffness() const;
     /// Wall-clock seconds so far: pair detection (and obstacle moves),
-    /// pair forces and stiffness, collision filter of the corrections.
-    /// Seconds spent. tree_build, the R-trees of the obstacles' (when they
-    /// move) and the shell's triangles, is part of detection and filter.
+    /// pair forces and stiffness, collision filter of the corrections;
+    /// tree_build, the R-trees of the obstacles (when they move) and of
+    /// the shell's triangles, is part of detection and filter.
     struct Timing
     {
       double detection = 0, pair_terms = 0, filter = 0, tree_build = 0;
