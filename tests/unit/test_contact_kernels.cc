@@ -214,3 +214,37 @@ TEST(ContactCCD, TriangleSweptThroughAPointIsCaught)
   EXPECT_LE(t_edges, 0.45);
   EXPECT_GE(t_edges, 0.4);
 }
+
+TEST(ContactCCD, SlidingAtATinyGapStridesButStaysConservative)
+{
+  // A point a hair above the offset slides 1 along a big triangle. The
+  // plain walk would take steps of about the gap over the slide, 1e-9,
+  // and give up at its iteration limit; the separating plane proves the
+  // whole slide safe.
+  const double        offset = 0.2, hair = 1e-9;
+  const Points4       x{Point<3>(-1, -1, offset + hair), Point<3>(-5, -5, 0),
+                  Point<3>(5, -5, 0), Point<3>(-5, 5, 0)};
+  const Displacements slide{Tensor<1, 3>({1, 0.5, 0}), Tensor<1, 3>(),
+                            Tensor<1, 3>(), Tensor<1, 3>()};
+  EXPECT_EQ(additive_ccd(PrimitivePair::point_triangle, x, slide, offset), 1.0);
+  // The same slide sinking by 1.8e-6 from 1e-6 above the offset: it
+  // reaches the offset at t = 1/1.8 and must stop before, at a distance
+  // still above the offset.
+  Points4 above         = x;
+  above[0][2]           = offset + 1e-6;
+  Displacements sinking = slide;
+  sinking[0][2]         = -1.8e-6;
+  const double t =
+      additive_ccd(PrimitivePair::point_triangle, above, sinking, offset);
+  EXPECT_LE(t, 1 / 1.8);
+  EXPECT_GT(t, 0.9 * 0.9 / 1.8); // strides most of the way, not 1e-6
+  EXPECT_GT(above[0][2] + t * sinking[0][2], offset);
+  // Two crossing edges, one sliding along itself a hair above the other.
+  const Points4       edges{Point<3>(-1, 0, 0), Point<3>(1, 0, 0),
+                      Point<3>(0, -1, 0.1 + hair), Point<3>(0, 1, 0.1 + hair)};
+  const Tensor<1, 3>  along({0, 0.5, 0});
+  const Displacements slide_edges{Tensor<1, 3>(), Tensor<1, 3>(), along, along};
+  EXPECT_EQ(
+      additive_ccd(PrimitivePair::segment_segment, edges, slide_edges, 0.1),
+      1.0);
+}

@@ -26,7 +26,9 @@ namespace coshell::contact
   /// least 'kept_fraction' of the starting gap. Conservative: it advances
   /// by steps that cannot close the gap, bounded by the largest relative
   /// displacement. Returns 0 if the primitives start within
-  /// 'minimum_distance'.
+  /// 'minimum_distance'. A walk that takes many steps (a pair sliding at
+  /// a tiny gap, where those steps shrink with the gap) also strides as
+  /// far as the plane separating the pair, held fixed, keeps the gap.
   double additive_ccd(PrimitivePair        pair,
                       const Points4       &x,
                       const Displacements &dx,
