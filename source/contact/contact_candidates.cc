@@ -101,6 +101,18 @@ namespace coshell::contact
       return std::sqrt(largest);
     }
 
+    /// The longest move of any point in the motion, shell or obstacle.
+    double largest_motion(const std::vector<Tensor<1, 3>> *dx,
+                          const std::vector<Tensor<1, 3>> *dX)
+    {
+      double largest = 0;
+      for (const auto *moves : {dx, dX})
+        if (moves)
+          for (const Tensor<1, 3> &move : *moves)
+            largest = std::max(largest, move.norm_square());
+      return std::sqrt(largest);
+    }
+
     /// As largest_drift(), less a common translation of all the points:
     /// their largest distance from the centre of the drifts' bounding box,
     /// at the start and at the end of the motion. Distances between shell
@@ -175,6 +187,14 @@ namespace coshell::contact
   bool Contact::Screen::skips_search(double listed, double reach) const
   {
     return listed - shift >= reach;
+  }
+
+  bool Contact::Screen::clears(double listed, double offset) const
+  {
+    // skips_filter() with every pair's largest move bounded by the
+    // motion's: clears() implies skips_filter(), to the bit.
+    const double gap = listed - shift - offset;
+    return gap > 0 && 0.8 * gap > 4 * largest_move;
   }
 
   bool Contact::Screen::skips_filter(double               listed,
@@ -442,6 +462,10 @@ namespace coshell::contact
       if (parameters_.self_contact && only == invalid_obstacle)
         make_self_candidates(motion, shell_tree, 0, false, swept);
     }
+    const double largest_move = largest_motion(motion.dx, motion.dX);
+    for (Screen &screen : obstacle_screens)
+      screen.largest_move = largest_move;
+    self_screen.largest_move   = largest_move;
     const Candidates &c        = cached ? candidates_ : swept;
     double            fraction = 1;
     for (unsigned int o = 0; o < current_.size(); ++o)
@@ -452,6 +476,13 @@ namespace coshell::contact
       fraction =
           std::min(fraction, self_filter_fraction(motion, c, self_screen));
     return fraction;
+  }
+
+  double Contact::filter_offset(double kept) const
+  {
+    return parameters_.method == Method::penalty
+               ? parameters_.penalty_step_filter * kept
+               : kept;
   }
 
   /// The fraction one listed pair allows. Only pairs whose swept boxes
@@ -466,9 +497,7 @@ namespace coshell::contact
                                        const Displacements &moves,
                                        double               kept) const
   {
-    const double offset = parameters_.method == Method::penalty
-                              ? parameters_.penalty_step_filter * kept
-                              : kept;
+    const double offset = filter_offset(kept);
     if (screen.skips_filter(listed, offset, moves) ||
         !swept_boxes_meet(type, points, moves, offset))
       return 1;
@@ -493,6 +522,9 @@ namespace coshell::contact
       for (unsigned i = vertex_triangle.start[k];
            i < vertex_triangle.start[k + 1]; ++i)
       {
+        const double kept = offset(o, true, v);
+        if (screen.clears(vertex_triangle.distance[i], filter_offset(kept)))
+          continue;
         const auto &t = triangles[vertex_triangle.other[i]];
         fraction      = std::min(
                  fraction, pair_filter_fraction(screen, vertex_triangle.distance[i],
@@ -500,7 +532,7 @@ namespace coshell::contact
                                                 {{x[v], X[t[0]], X[t[1]], X[t[2]]}},
                                                 {{along(dx, v), along(dX, t[0]),
                                                   along(dX, t[1]), along(dX, t[2])}},
-                                                offset(o, true, v)));
+                                                kept));
       }
     }
     const auto &triangle_vertex = c.triangle_vertex[o];
@@ -509,14 +541,17 @@ namespace coshell::contact
            i < triangle_vertex.start[j + 1]; ++i)
       {
         const unsigned triangle = triangle_vertex.other[i];
-        const auto    &t        = shell_triangles_[triangle];
-        fraction                = std::min(
-                           fraction, pair_filter_fraction(screen, triangle_vertex.distance[i],
-                                                          PrimitivePair::point_triangle,
-                                                          {{X[j], x[t[0]], x[t[1]], x[t[2]]}},
-                                                          {{along(dX, j), along(dx, t[0]),
-                                                            along(dx, t[1]), along(dx, t[2])}},
-                                                          offset(o, false, triangle)));
+        const double   kept     = offset(o, false, triangle);
+        if (screen.clears(triangle_vertex.distance[i], filter_offset(kept)))
+          continue;
+        const auto &t = shell_triangles_[triangle];
+        fraction      = std::min(
+                 fraction, pair_filter_fraction(screen, triangle_vertex.distance[i],
+                                                PrimitivePair::point_triangle,
+                                                {{X[j], x[t[0]], x[t[1]], x[t[2]]}},
+                                                {{along(dX, j), along(dx, t[0]),
+                                                  along(dx, t[1]), along(dx, t[2])}},
+                                                kept));
       }
     if (parameters_.edge_edge_pairs)
       fraction = std::min(fraction, edge_filter_fraction(motion, o, c, screen));
@@ -536,10 +571,13 @@ namespace coshell::contact
     double      fraction = 1;
     for (unsigned int e = 0; e < shell_edges_.size(); ++e)
     {
-      const auto [a, b] = shell_edges_[e];
-      const double kept = edge_offset(o, e);
+      const auto [a, b]    = shell_edges_[e];
+      const double kept    = edge_offset(o, e);
+      const double cleared = filter_offset(kept);
       for (unsigned i = rows.start[e]; i < rows.start[e + 1]; ++i)
       {
+        if (screen.clears(rows.distance[i], cleared))
+          continue;
         const auto [p, q] = obstacle_edges_[o][rows.other[i]];
         fraction          = std::min(
                      fraction,
@@ -563,6 +601,8 @@ namespace coshell::contact
     const auto  filter   = [&](double listed, PrimitivePair type,
                             const std::array<unsigned, 4> &ids, double kept)
     {
+      if (screen.clears(listed, filter_offset(kept)))
+        return;
       fraction = std::min(
           fraction,
           pair_filter_fraction(screen, listed, type,

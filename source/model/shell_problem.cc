@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <tuple>
+#include <type_traits>
 
 namespace coshell::model
 {
@@ -268,6 +269,9 @@ namespace coshell::model
           {
             for (unsigned int i = 0; i < block.dofs.size(); ++i)
               force[block.dofs[i]] += block.vector[i];
+            if (scatter_directly(block.matrix, block.vector, block.dofs,
+                                 tangent, &residual))
+              return;
             if (tangent)
               constraints_.distribute_local_to_global(within_pattern(block),
                                                       block.vector, block.dofs,
@@ -278,6 +282,25 @@ namespace coshell::model
           },
           tangent != nullptr);
     }
+  }
+
+  template<typename Matrix>
+  bool ShellProblem::scatter_directly(
+      const FullMatrix<double>                   &matrix,
+      const Vector<double>                       &vector,
+      const std::vector<types::global_dof_index> &dofs,
+      Matrix                                     *tangent,
+      Vector<double>                             *residual)
+  {
+    // Trilinos matrices (MPI) keep deal.II's path, which also sends the
+    // entries of rows that other ranks own.
+    if constexpr (std::is_same_v<Matrix, SparseMatrix<double>>)
+      if (constraints_.n_constraints() == 0)
+      {
+        scatter_.add(matrix, vector, dofs, tangent, residual);
+        return true;
+      }
+    return false;
   }
 
   /// The block's matrix without the couplings the pattern lacks (a self

@@ -35,10 +35,11 @@ namespace coshell::solvers
 
     /// Views the row storage as CHOLMOD's column storage: for a symmetric
     /// matrix row r of A is column r of A. Only entries with row <= column
-    /// are read (stype = 1).
+    /// are read (stype = 1), the columns <= r of row r: only those are
+    /// copied.
     void copy(const SparseMatrix<double> &source)
     {
-      rows.copy(source);
+      rows.copy(source, true);
       matrix.nrow = matrix.ncol = rows.n_rows();
       matrix.nzmax              = rows.values.size();
       matrix.p                  = rows.starts.data();

@@ -2,7 +2,8 @@
 
 namespace coshell::solvers
 {
-  void CompressedRows::copy(const dealii::SparseMatrix<double> &matrix)
+  void CompressedRows::copy(const dealii::SparseMatrix<double> &matrix,
+                            bool                                lower_only)
   {
     const unsigned int n = matrix.m();
     starts.assign(n + 1, 0);
@@ -20,6 +21,8 @@ namespace coshell::solvers
         // within reach during a step; most of those entries stay exactly
         // zero (70 % of a folded lens's), and factorized they would only
         // cost fill and flops. The diagonal is kept whatever its value.
+        if (lower_only && entry->column() > row)
+          break; // the rest of the row lies above the diagonal too
         if (entry->value() == 0.0 && entry->column() != row)
           continue;
         int place = k++;

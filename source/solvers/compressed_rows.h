@@ -17,7 +17,10 @@ namespace coshell::solvers
     std::vector<int>    starts, indices;
     std::vector<double> values;
 
-    void copy(const dealii::SparseMatrix<double> &matrix);
+    /// Copies the whole matrix, or with 'lower_only' only the entries
+    /// with column <= row: all that CHOLMOD reads of a symmetric one.
+    void copy(const dealii::SparseMatrix<double> &matrix,
+              bool                                lower_only = false);
     bool same_pattern(const CompressedRows &other) const;
     int  n_rows() const;
   };

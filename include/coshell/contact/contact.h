@@ -13,6 +13,7 @@
 #include <deal.II/numerics/rtree.h>
 
 #include <initializer_list>
+#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
@@ -397,8 +398,13 @@ namespace coshell::contact
     struct Screen
     {
       double shift = 0;
+      /// The longest move of any point of the filter's motion (length).
+      double largest_move = std::numeric_limits<double>::infinity();
       /// True if the pair is out of 'reach' (no pair of the search).
       bool skips_search(double listed, double reach) const;
+      /// True if skips_filter() is, whatever the pair's moves, by
+      /// 'largest_move': decided before the pair's points are gathered.
+      bool clears(double listed, double offset) const;
       /// True if additive_ccd() would let the whole motion of the pair's
       /// points ('moves') pass.
       bool skips_filter(double               listed,
@@ -446,6 +452,8 @@ namespace coshell::contact
     /// The step filter: the largest fraction of the motion that keeps
     /// every pair (of obstacle 'only', or of all and self contact) apart.
     double filter_fraction(const Motion &motion, unsigned int only) const;
+    /// The part of a pair's offset 'kept' that the step filter keeps.
+    double filter_offset(double kept) const;
     double pair_filter_fraction(const Screen        &screen,
                                 double               listed,
                                 PrimitivePair        type,

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <coshell/model/contribution.h>
+#include <coshell/model/direct_scatter.h>
 #include <coshell/model/shell_model.h>
 #include <coshell/model/shell_state.h>
 #include <coshell/solvers/nonlinear_problem.h>
@@ -158,7 +159,19 @@ namespace coshell::model
     std::vector<std::array<unsigned int, 2>> coupled_vertices_;
     std::vector<std::array<unsigned int, 2>> gathered_couplings_;
     mutable dealii::FullMatrix<double>       trimmed_;
-    bool                                     couples_beyond_cells_ = false;
+    /// Adds contact blocks where no DoF is constrained (free-flying
+    /// scenes).
+    DirectScatter scatter_;
+    /// Adds a contact block through scatter_ if the tangent is a deal.II matrix
+    /// (or none) and no DoF is constrained; returns whether it did.
+    template<typename Matrix>
+    bool
+         scatter_directly(const dealii::FullMatrix<double>                   &matrix,
+                          const dealii::Vector<double>                       &vector,
+                          const std::vector<dealii::types::global_dof_index> &dofs,
+                          Matrix                 *tangent,
+                          dealii::Vector<double> *residual);
+    bool couples_beyond_cells_ = false;
     const dealii::FullMatrix<double>                  &
     within_pattern(const DofBlock &block) const;
     Schedule         schedule_;

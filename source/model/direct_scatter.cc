@@ -1,0 +1,84 @@
+#include <coshell/model/direct_scatter.h>
+
+#include <algorithm>
+#include <numeric>
+
+namespace coshell::model
+{
+  using namespace dealii;
+
+  void DirectScatter::add(const FullMatrix<double> &local,
+                          const Vector<double>     &local_vector,
+                          const std::vector<types::global_dof_index> &dofs,
+                          SparseMatrix<double>                       *matrix,
+                          Vector<double>                             *vector)
+  {
+    if (vector)
+      for (unsigned int i = 0; i < dofs.size(); ++i)
+        (*vector)(dofs[i]) += local_vector(i);
+    if (!matrix)
+      return;
+    order_.resize(dofs.size());
+    std::iota(order_.begin(), order_.end(), 0u);
+    std::sort(order_.begin(), order_.end(),
+              [&](unsigned int a, unsigned int b)
+              { return dofs[a] < dofs[b]; });
+    for (unsigned int i = 0; i < dofs.size(); ++i)
+      add_row(local, i, dofs, *matrix);
+  }
+
+  namespace
+  {
+    /// The first place k >= 'from' of 'row' whose column is not below
+    /// 'column', by bisection (the row's columns ascend after the
+    /// diagonal).
+    unsigned int lower_bound(const SparsityPattern  &pattern,
+                             types::global_dof_index row,
+                             unsigned int            from,
+                             types::global_dof_index column)
+    {
+      unsigned int to = pattern.row_length(row);
+      while (from < to)
+      {
+        const unsigned int middle = from + (to - from) / 2;
+        if (pattern.column_number(row, middle) < column)
+          from = middle + 1;
+        else
+          to = middle;
+      }
+      return from;
+    }
+  } // namespace
+
+  void DirectScatter::add_row(const FullMatrix<double>                   &local,
+                              unsigned int                                i,
+                              const std::vector<types::global_dof_index> &dofs,
+                              SparseMatrix<double> &matrix) const
+  {
+    const SparsityPattern        &pattern = matrix.get_sparsity_pattern();
+    const types::global_dof_index row     = dofs[i];
+    const unsigned int            length  = pattern.row_length(row);
+    // A square deal.II pattern stores the diagonal first, then the rest
+    // of the row in increasing column order.
+    const std::size_t first  = pattern(row, row);
+    const auto        add_at = [&](unsigned int k, double value)
+    {
+      SparseMatrixIterators::Iterator<double, false>(&matrix, first + k)
+          ->value() += value;
+    };
+    add_at(0, local(i, i));
+    // A block's DoFs come in runs (a vertex's six), and so do the row's
+    // columns: after one bisection per run the walk finds the next
+    // column at the next place.
+    unsigned int k = 1;
+    for (const unsigned int j : order_)
+    {
+      if (j == i)
+        continue;
+      if (k >= length || pattern.column_number(row, k) != dofs[j])
+        k = lower_bound(pattern, row, std::max(k, 1u), dofs[j]);
+      if (k < length && pattern.column_number(row, k) == dofs[j])
+        add_at(k++, local(i, j));
+    }
+  }
+} // namespace coshell::model

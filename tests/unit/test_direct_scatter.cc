@@ -1,0 +1,82 @@
+// DirectScatter against deal.II's AffineConstraints::distribute_local_to_global
+// with no constraints: blocks with unsorted DoFs, some of whose couplings
+// the pattern lacks, give the same matrix and vector to the bit.
+
+#include <coshell/model/direct_scatter.h>
+
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/sparsity_pattern.h>
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+using namespace dealii;
+
+namespace
+{
+  using Dofs = std::vector<types::global_dof_index>;
+
+  /// Entries of irrational size, so that summation order would show.
+  double entry(unsigned int block, unsigned int i, unsigned int j)
+  {
+    return std::sin(1.0 + block + 0.37 * i + 1.71 * j) * std::sqrt(2.0 + i);
+  }
+} // namespace
+
+TEST(DirectScatter, SameSumsAsDealIIAndLeavesOutWhatThePatternLacks)
+{
+  const unsigned int      n = 10;
+  const std::vector<Dofs> blocks{{7, 2, 5, 0}, {3, 9, 2}, {5, 0, 8, 1, 7}};
+  // The pattern holds the couplings of the first two blocks only: the
+  // third couples 8 and 1 with the rest beyond it.
+  DynamicSparsityPattern dsp(n, n);
+  for (unsigned int i = 0; i < n; ++i)
+    dsp.add(i, i);
+  for (unsigned int b = 0; b < 2; ++b)
+    for (const auto i : blocks[b])
+      for (const auto j : blocks[b])
+        dsp.add(i, j);
+  SparsityPattern pattern;
+  pattern.copy_from(dsp);
+  SparseMatrix<double>      direct(pattern), reference(pattern);
+  Vector<double>            direct_vector(n), reference_vector(n);
+  AffineConstraints<double> none;
+  none.close();
+  coshell::model::DirectScatter scatter;
+  for (unsigned int b = 0; b < blocks.size(); ++b)
+  {
+    const Dofs        &dofs = blocks[b];
+    FullMatrix<double> local(dofs.size()), trimmed(dofs.size());
+    Vector<double>     local_vector(dofs.size());
+    for (unsigned int i = 0; i < dofs.size(); ++i)
+    {
+      local_vector(i) = entry(b, i, 99);
+      for (unsigned int j = 0; j < dofs.size(); ++j)
+      {
+        local(i, j) = entry(b, i, j);
+        if (pattern(dofs[i], dofs[j]) != SparsityPattern::invalid_entry)
+          trimmed(i, j) = local(i, j);
+      }
+    }
+    scatter.add(local, local_vector, dofs, &direct, &direct_vector);
+    none.distribute_local_to_global(trimmed, local_vector, dofs, reference,
+                                    reference_vector);
+  }
+  for (unsigned int i = 0; i < n; ++i)
+  {
+    EXPECT_EQ(direct_vector(i), reference_vector(i)) << "row " << i;
+    for (auto e = reference.begin(i); e != reference.end(i); ++e)
+      EXPECT_EQ(direct.el(i, e->column()), e->value())
+          << "entry (" << i << ", " << e->column() << ")";
+  }
+  // The third block's diagonal of DoF 8 had room in the pattern.
+  EXPECT_EQ(direct.el(8, 8), entry(2, 2, 2));
+  // A vector alone.
+  Vector<double> only(n), values(3);
+  values = 1.5;
+  scatter.add(FullMatrix<double>(), values, {4, 6, 1}, nullptr, &only);
+  EXPECT_EQ(only(6), 1.5);
+  EXPECT_EQ(only.l1_norm(), 4.5);
+}
