@@ -223,45 +223,64 @@ namespace coshell::contact
     return 0.25 * largest_thickness_;
   }
 
-  /// Whether candidates_ covers the motion, and if so the screens of its
-  /// pairs: per obstacle, and for self contact.
-  bool Contact::covers(const Motion        &motion,
-                       std::vector<Screen> &obstacle_screens,
-                       Screen              &self_screen) const
+  void Contact::Candidates::resize(unsigned int n_obstacles)
+  {
+    obstacle_origin.resize(n_obstacles);
+    vertex_triangle.resize(n_obstacles);
+    triangle_vertex.resize(n_obstacles);
+    edge_edge.resize(n_obstacles);
+  }
+
+  bool Contact::Coverage::all() const
+  {
+    return self &&
+           std::find(obstacle.begin(), obstacle.end(), false) == obstacle.end();
+  }
+
+  /// Per list, whether candidates_ covers the motion, and if so the
+  /// screen of its pairs.
+  Contact::Coverage Contact::covers(const Motion        &motion,
+                                    std::vector<Screen> &obstacle_screens,
+                                    Screen              &self_screen) const
   {
     const Candidates &c = candidates_;
-    if (c.margin < 0)
-      return false;
-    const double shell_now =
-        largest_drift(&shell_vertices_, motion.x, nullptr, c.shell);
-    const double shell_swept =
-        largest_drift(&shell_vertices_, motion.x, motion.dx, c.shell);
+    Coverage          coverage;
     if (parameters_.self_contact)
     {
       // A lens pushed along the injector mostly translates: its self
       // distances stay, and the lists with them.
-      const double self_swept =
-          largest_relative_drift(shell_vertices_, motion.x, motion.dx, c.shell);
-      if (2 * self_swept > c.margin)
-        return false;
-      self_screen = {2 * largest_relative_drift(shell_vertices_, motion.x,
-                                                nullptr, c.shell)};
+      const ListOrigin &origin = c.self_origin;
+      coverage.self            = origin.margin >= 0 &&
+                      2 * largest_relative_drift(shell_vertices_, motion.x,
+                                                 motion.dx, origin.shell) <=
+                          origin.margin;
+      if (coverage.self)
+        self_screen = {2 * largest_relative_drift(shell_vertices_, motion.x,
+                                                  nullptr, origin.shell)};
     }
-    else
-      self_screen = {2 * shell_now};
+    coverage.obstacle.assign(current_.size(), false);
     obstacle_screens.resize(current_.size());
     for (unsigned int o = 0; o < current_.size(); ++o)
     {
+      const ListOrigin &origin = c.obstacle_origin[o];
+      if (origin.margin < 0)
+        continue;
       const auto  *dX = o == motion.moving ? motion.dX : nullptr;
+      const double shell_now =
+          largest_drift(&shell_vertices_, motion.x, nullptr, origin.shell);
+      const double shell_swept = motion.dx
+                                     ? largest_drift(&shell_vertices_, motion.x,
+                                                     motion.dx, origin.shell)
+                                     : shell_now;
       const double now =
-          largest_drift(nullptr, current_[o], nullptr, c.obstacles[o]);
+          largest_drift(nullptr, current_[o], nullptr, origin.obstacle);
       const double swept =
-          dX ? largest_drift(nullptr, current_[o], dX, c.obstacles[o]) : now;
-      if (shell_swept + swept > c.margin)
-        return false;
-      obstacle_screens[o] = {shell_now + now};
+          dX ? largest_drift(nullptr, current_[o], dX, origin.obstacle) : now;
+      coverage.obstacle[o] = shell_swept + swept <= origin.margin;
+      if (coverage.obstacle[o])
+        obstacle_screens[o] = {shell_now + now};
     }
-    return true;
+    return coverage;
   }
 
   /// The lists of obstacle o for the motion, as far as 'margin' beyond
@@ -413,68 +432,84 @@ namespace coshell::contact
     }
   }
 
-  /// Makes candidates_ anew at the shell's positions x and the obstacles'
-  /// present ones unless they still cover them; returns the screens.
+  /// Makes the lists of candidates_ anew at the shell's positions x and
+  /// the obstacles' present ones where they no longer cover them; returns
+  /// the screens.
   void Contact::update_candidates(const std::vector<Point<3>> &x,
                                   std::vector<Screen>         &obstacle_screens,
                                   Screen                      &self_screen)
   {
     const Motion still{x, nullptr, invalid_obstacle, nullptr};
-    if (covers(still, obstacle_screens, self_screen))
+    Candidates  &c = candidates_;
+    c.resize(current_.size());
+    const Coverage coverage = covers(still, obstacle_screens, self_screen);
+    if (coverage.all())
       return;
-    Candidates &c = candidates_;
-    c.margin      = candidate_margin();
-    c.shell       = x;
-    c.obstacles   = current_;
-    c.vertex_triangle.resize(current_.size());
-    c.triangle_vertex.resize(current_.size());
-    c.edge_edge.resize(current_.size());
-    const Tree shell_tree = shell_triangle_tree(x, nullptr, 0);
+    const double margin     = candidate_margin();
+    const Tree   shell_tree = shell_triangle_tree(x, nullptr, 0);
     for (unsigned int o = 0; o < current_.size(); ++o)
-      make_obstacle_candidates(o, still, shell_tree, c.margin, true, c);
-    if (parameters_.self_contact)
-      make_self_candidates(still, shell_tree, c.margin, true, c);
-    obstacle_screens.assign(current_.size(), Screen());
-    self_screen = Screen();
+      if (!coverage.obstacle[o])
+      {
+        c.obstacle_origin[o] = {x, current_[o], margin};
+        make_obstacle_candidates(o, still, shell_tree, margin, true, c);
+        obstacle_screens[o] = Screen();
+      }
+    if (!coverage.self)
+    {
+      c.self_origin = {x, {}, margin};
+      make_self_candidates(still, shell_tree, margin, true, c);
+      self_screen = Screen();
+    }
   }
 
   /// Largest fraction of the motion that keeps every pair farther apart
   /// than its offset: additive CCD on the listed pairs the screens do
-  /// not clear. The lists are candidates_ if they cover the motion, else
-  /// made for it alone (the shell's triangles and the moving obstacle
-  /// swept), for obstacle 'only' if given, else for all.
+  /// not clear. Each list is candidates_'s if it covers the motion, else
+  /// made for the motion alone (the shell's triangles and the moving
+  /// obstacle swept); for obstacle 'only' if given, else for all.
   double Contact::filter_fraction(const Motion &motion, unsigned int only) const
   {
-    std::vector<Screen> obstacle_screens;
+    std::vector<Screen> screens;
     Screen              self_screen;
-    const bool          cached = covers(motion, obstacle_screens, self_screen);
-    Candidates          swept;
-    if (!cached)
+    Coverage            coverage = covers(motion, screens, self_screen);
+    const bool          all      = only == invalid_obstacle;
+    const bool          self     = parameters_.self_contact && all;
+    for (unsigned int o = 0; o < current_.size(); ++o)
+      coverage.obstacle[o] = coverage.obstacle[o] || !(all || o == only);
+    coverage.self = coverage.self || !self;
+    Candidates swept;
+    if (!coverage.all())
     {
-      obstacle_screens.assign(current_.size(), Screen());
-      swept.vertex_triangle.resize(current_.size());
-      swept.triangle_vertex.resize(current_.size());
-      swept.edge_edge.resize(current_.size());
+      swept.resize(current_.size());
       const Tree shell_tree = shell_triangle_tree(motion.x, motion.dx, 0);
       for (unsigned int o = 0; o < current_.size(); ++o)
-        if (only == invalid_obstacle || o == only)
+        if (!coverage.obstacle[o])
+        {
           make_obstacle_candidates(o, motion, shell_tree, 0, false, swept);
-      if (parameters_.self_contact && only == invalid_obstacle)
+          screens[o] = Screen();
+        }
+      if (!coverage.self)
+      {
         make_self_candidates(motion, shell_tree, 0, false, swept);
+        self_screen = Screen();
+      }
     }
     const double largest_move = largest_motion(motion.dx, motion.dX);
-    for (Screen &screen : obstacle_screens)
+    for (Screen &screen : screens)
       screen.largest_move = largest_move;
-    self_screen.largest_move   = largest_move;
-    const Candidates &c        = cached ? candidates_ : swept;
-    double            fraction = 1;
+    self_screen.largest_move = largest_move;
+    double fraction          = 1;
     for (unsigned int o = 0; o < current_.size(); ++o)
-      if (only == invalid_obstacle || o == only)
-        fraction = std::min(fraction, obstacle_filter_fraction(
-                                          motion, o, c, obstacle_screens[o]));
-    if (parameters_.self_contact && only == invalid_obstacle)
-      fraction =
-          std::min(fraction, self_filter_fraction(motion, c, self_screen));
+      if (all || o == only)
+        fraction = std::min(
+            fraction, obstacle_filter_fraction(
+                          motion, o, coverage.obstacle[o] ? candidates_ : swept,
+                          screens[o]));
+    if (self)
+      fraction = std::min(
+          fraction,
+          self_filter_fraction(motion, coverage.self ? candidates_ : swept,
+                               self_screen));
     return fraction;
   }
 
@@ -635,5 +670,61 @@ namespace coshell::contact
                self_edge_offset(e, f));
       }
     return fraction;
+  }
+
+  void
+  Contact::self_couplings(const model::ShellState                  &state,
+                          std::vector<std::array<unsigned int, 2>> &pairs) const
+  {
+    if (!parameters_.self_contact)
+      return;
+    // Pairs that may come within reach during the step: a margin of the
+    // largest thickness (the candidate lists' own margin is too narrow
+    // for the steps of a quasi-static roll-up). A pair that comes closer
+    // still keeps its exact force; only its coupling to the other side
+    // drops out of the tangent. While the shell's drift since the list
+    // was made, less a common translation, stays below a quarter of the
+    // margin, no pair came more than half the margin closer: a lens
+    // pushed along a nozzle keeps its list, and the matrix its pattern.
+    std::vector<Point<3>> x = shell_positions(state);
+    if (coupling_positions_.empty() ||
+        largest_relative_drift(shell_vertices_, x, nullptr,
+                               coupling_positions_) > largest_thickness_ / 4)
+    {
+      // By distance, not by box: the boxes' corners and the triangles'
+      // boxes took in far more pairs than the margin asks for.
+      Candidates   c;
+      const Motion still{x, nullptr, invalid_obstacle, nullptr};
+      const double margin = largest_thickness_;
+      make_self_candidates(still, shell_triangle_tree(x, nullptr, 0), margin,
+                           true, c);
+      coupling_pairs_.clear();
+      const double activation =
+          parameters_.method == Method::barrier ? activation_ : 0.0;
+      const auto &vertex_triangle = c.self_vertex_triangle;
+      for (unsigned int k = 0; k < shell_vertices_.size(); ++k)
+        for (unsigned i = vertex_triangle.start[k];
+             i < vertex_triangle.start[k + 1]; ++i)
+        {
+          const unsigned v = shell_vertices_[k], t = vertex_triangle.other[i];
+          if (vertex_triangle.distance[i] <
+              self_offset(v, t) + activation + margin)
+            for (const unsigned w : shell_triangles_[t])
+              coupling_pairs_.push_back({v, w});
+        }
+      const auto &edge_edge = c.self_edge_edge;
+      for (unsigned int e = 0; e + 1 < edge_edge.start.size(); ++e)
+        for (unsigned i = edge_edge.start[e]; i < edge_edge.start[e + 1]; ++i)
+        {
+          const unsigned f = edge_edge.other[i];
+          if (edge_edge.distance[i] <
+              self_edge_offset(e, f) + activation + margin)
+            for (const unsigned v : shell_edges_[e])
+              for (const unsigned w : shell_edges_[f])
+                coupling_pairs_.push_back({v, w});
+        }
+      coupling_positions_ = std::move(x);
+    }
+    pairs.insert(pairs.end(), coupling_pairs_.begin(), coupling_pairs_.end());
   }
 } // namespace coshell::contact
