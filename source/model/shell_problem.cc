@@ -470,6 +470,13 @@ namespace coshell::model
       contribution->end_trial();
   }
 
+  void ShellProblem::keep_trial()
+  {
+    trial_start_.reset();
+    for (const auto &contribution : contributions_)
+      contribution->keep_trial();
+  }
+
   bool ShellProblem::symmetric_tangent() const
   {
     for (const auto &contribution : contributions_)

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <iomanip>
 #include <sstream>
+#include <utility>
+#include <vector>
 
 namespace coshell::solvers
 {
@@ -177,41 +179,99 @@ namespace coshell::solvers
     return x;
   }
 
+  namespace
+  {
+    /// Takes back a trial increment: the problem puts the iterate back
+    /// exactly (end_trial()), and what the trial's evaluation changed.
+    void undo_trial(NonlinearProblem &problem, Vector<double> &step)
+    {
+      step *= -1;
+      problem.apply_increment(step);
+      step *= -1;
+      problem.end_trial();
+    }
+  } // namespace
+
   /// Crisfield's line search on the energy slope s(a) = du . r(x + a du):
   /// accept a when |s(a)| <= 0.8 |s(0)|, else take secant steps towards
-  /// s = 0, keeping a in [0.1, 1]. Each trial is undone by the opposite
-  /// increment, which is exact on rotations too (exp(-w) exp(w) = I).
-  double Newton::line_search_scale(NonlinearProblem     &problem,
-                                   const Vector<double> &residual,
-                                   const Vector<double> &correction) const
+  /// s = 0, keeping a in [0.1, 1]. Rejected trials are undone; an
+  /// accepted one is left applied, with its residual in 'trial_residual',
+  /// for the caller to keep or undo. The first trial assembles 'tangent'
+  /// too if given: on the IOL injection 82 % of the line searches accept
+  /// it, and its evaluation is then the next iteration's. Later trials
+  /// are accepted less often than not, and assemble the residual alone.
+  Newton::LineSearch Newton::line_search(NonlinearProblem     &problem,
+                                         const Vector<double> &residual,
+                                         const Vector<double> &correction,
+                                         Vector<double>       &trial_residual,
+                                         TangentMatrix        *tangent) const
   {
     const double   slope_at_zero = correction * residual;
     double         a_low = 0, s_low = slope_at_zero, a = 1;
-    Vector<double> trial_residual(residual.size()), step(correction.size());
+    Vector<double> step(correction.size());
+    // The secant often comes back to a scale it has tried (the floor 0.1,
+    // or 1 where the slope barely drops): that trial was rejected, and
+    // evaluating the same iterate again gives the same slope. On the IOL
+    // injection a tenth of the line searches did so, 2 evaluations each.
+    std::vector<std::pair<double, double>> rejected;
     for (unsigned int trial = 0; trial < 4; ++trial)
     {
-      step.equ(a, correction);
-      problem.begin_trial();
-      problem.apply_increment(step);
-      problem.evaluate(trial_residual, nullptr);
-      step *= -1;
-      problem.apply_increment(step);
-      problem.end_trial();
-      const double slope = correction * trial_residual;
+      const auto tried = std::find_if(rejected.begin(), rejected.end(),
+                                      [a](const auto &scale_slope)
+                                      { return scale_slope.first == a; });
+      double     slope = tried == rejected.end() ? 0 : tried->second;
+      if (tried == rejected.end())
+      {
+        step.equ(a, correction);
+        problem.begin_trial();
+        problem.apply_increment(step);
+        TangentMatrix *trial_tangent = trial == 0 ? tangent : nullptr;
+        problem.evaluate(trial_residual, trial_tangent);
+        slope = correction * trial_residual;
+        if (std::isfinite(slope) &&
+            std::abs(slope) <= 0.8 * std::abs(slope_at_zero))
+          return {a, true, trial_tangent != nullptr};
+        undo_trial(problem, step);
+        rejected.emplace_back(a, slope);
+      }
       if (!std::isfinite(slope))
       {
         a = 0.5 * (a_low + a);
         continue;
       }
-      if (std::abs(slope) <= 0.8 * std::abs(slope_at_zero))
-        return a;
       const double secant = a_low + (a - a_low) * s_low / (s_low - slope);
       a_low               = a;
       s_low               = slope;
       a                   = std::clamp(std::isfinite(secant) ? secant : 1.0,
                      smallest_line_search_scale, 1.0);
     }
-    return a;
+    return {a, false, false};
+  }
+
+  /// Applies the correction du, scaled already: keeps the line search's
+  /// accepted trial, which is at x + du, if its evaluation is the kind the
+  /// next iteration makes (with the tangent or without), and returns true;
+  /// else undoes the trial, applies du and returns false. Keeping a trial
+  /// of the other kind would change the path: an evaluation moves
+  /// obstacles that are catching up with their motion, so evaluating the
+  /// same iterate again is not the same as evaluating it once.
+  bool Newton::apply_correction(NonlinearProblem &problem,
+                                const LineSearch &search,
+                                bool              next_with_tangent,
+                                Vector<double>   &du,
+                                Vector<double>   &residual,
+                                Vector<double>   &trial_residual) const
+  {
+    if (search.accepted && search.with_tangent == next_with_tangent)
+    {
+      problem.keep_trial();
+      residual.swap(trial_residual);
+      return true;
+    }
+    if (search.accepted)
+      undo_trial(problem, du);
+    problem.apply_increment(du);
+    return false;
   }
 
   unsigned int Newton::solve(NonlinearProblem &problem,
@@ -221,6 +281,7 @@ namespace coshell::solvers
     TangentMatrix tangent;
     problem.reinit_tangent(tangent);
     Vector<double>        residual(problem.sparsity().n_rows());
+    Vector<double>        trial_residual(residual.size());
     Vector<double>        step_increment(residual.size());
     double                first_energy     = 0;
     bool                  correction_small = false;
@@ -228,11 +289,15 @@ namespace coshell::solvers
     unsigned int          climbs = 0; // corrections that climbed the energy
     ConvergencePrediction prediction(parameters_.residual_tolerance);
     bool                  whole_correction = false;
+    // The line search's accepted trial was kept: it evaluated the iterate.
+    bool evaluated = false;
     for (unsigned int iteration = 0;; ++iteration)
     {
       const bool last_expected =
           correction_small || prediction.expects_convergence(whole_correction);
-      problem.evaluate(residual, last_expected ? nullptr : &tangent);
+      if (!evaluated)
+        problem.evaluate(residual, last_expected ? nullptr : &tangent);
+      evaluated = false;
       const double relative_residual =
           residual.l2_norm() / std::max(problem.force_scale(), 1e-300);
       prediction.add(relative_residual, whole_correction);
@@ -285,21 +350,32 @@ namespace coshell::solvers
       const double fraction = problem.admissible_fraction(du);
       if (fraction < 1)
         du *= fraction;
-      double scale = 1;
+      LineSearch search;
       if (parameters_.line_search)
-        du *= (scale = line_search_scale(problem, residual, du));
-      corrections.add(scale <= smallest_line_search_scale, slope < 0);
-      whole_correction = fraction == 1 && scale == 1;
-      problem.apply_increment(du);
+      {
+        // The first trial's tangent, as the next evaluation's.
+        const bool trial_tangent =
+            !direction_small && !prediction.expects_convergence(fraction == 1);
+        search = line_search(problem, residual, du, trial_residual,
+                             trial_tangent ? &tangent : nullptr);
+        du *= search.scale;
+      }
+      corrections.add(search.scale <= smallest_line_search_scale, slope < 0);
+      whole_correction = fraction == 1 && search.scale == 1;
       step_increment += du;
-      if (observer)
-        observer({iteration, relative_residual, du.l2_norm(),
-                  energy / first_energy});
       correction_small =
           direction_small ||
           (energy <= parameters_.energy_tolerance * first_energy &&
            du.l2_norm() <= parameters_.increment_tolerance *
                                std::max(step_increment.l2_norm(), 1e-300));
+      const bool next_with_tangent =
+          !correction_small &&
+          !prediction.expects_convergence(whole_correction);
+      evaluated = apply_correction(problem, search, next_with_tangent, du,
+                                   residual, trial_residual);
+      if (observer)
+        observer({iteration, relative_residual, du.l2_norm(),
+                  energy / first_energy});
     }
   }
 

@@ -161,6 +161,10 @@ namespace coshell::solvers
       {
         problem_.end_trial();
       }
+      void keep_trial() override
+      {
+        problem_.keep_trial();
+      }
       bool symmetric_tangent() const override
       {
         return problem_.symmetric_tangent();

@@ -275,6 +275,48 @@ TEST(Newton, LineSearchLeavesTheIterateUnchangedBetweenTrials)
   EXPECT_NEAR(problem.x()[0], cubic_root(50.0, 1.0), 1e-9);
 }
 
+TEST(Newton, LineSearchKeepsTheEvaluationOfAnAcceptedWholeStep)
+{
+  // Where every whole correction is accepted, the line search's trial is
+  // the next iteration's evaluation: Newton with the line search evaluates
+  // (with and without the tangent) exactly as often as without it, and
+  // reaches the same iterate to the bit.
+  CubicSprings       plain({0.5, -0.8}, 0.1), searched({0.5, -0.8}, 0.1);
+  NewtonParameters   parameters;
+  const unsigned int iterations = Newton(parameters, umfpack()).solve(plain);
+  parameters.line_search        = true;
+  EXPECT_EQ(Newton(parameters, umfpack()).solve(searched), iterations);
+  EXPECT_EQ(searched.evaluations, plain.evaluations);
+  EXPECT_EQ(searched.tangent_evaluations, plain.tangent_evaluations);
+  EXPECT_EQ(searched.x()[0], plain.x()[0]);
+  EXPECT_EQ(searched.x()[1], plain.x()[1]);
+}
+
+TEST(Newton, LineSearchEvaluatesEachScaleOnce)
+{
+  // A tangent 1 / 0.03 times too stiff: the slope drops by 3 % at the
+  // whole correction, the secant asks for more than 1 and is clamped back
+  // to 1, which was tried. One evaluation per scale: the solve's first
+  // evaluation, one trial, the next iteration's (then the limit).
+  class TooStiffTangent : public CubicSprings
+  {
+  public:
+    TooStiffTangent() : CubicSprings({1.0}, 0.0) {}
+    void evaluate(Vector<double> &r, TangentMatrix *tangent) override
+    {
+      CubicSprings::evaluate(r, tangent);
+      if (tangent)
+        tangent->serial() *= 1 / 0.03;
+    }
+  } problem;
+  NewtonParameters parameters;
+  parameters.line_search    = true;
+  parameters.max_iterations = 1;
+  EXPECT_THROW(Newton(parameters, umfpack()).solve(problem), NewtonFailure);
+  EXPECT_EQ(problem.evaluations, 3u);
+  EXPECT_NEAR(problem.x()[0], 0.03, 1e-15);
+}
+
 TEST(Newton, FailureMessageNamesAnIndefiniteTangent)
 {
   // A softening spring, f = x - x^3, carries at most 2 / sqrt(27) = 0.385:

@@ -92,6 +92,7 @@ namespace coshell::model
     void        restore() override;
     void        begin_trial() override;
     void        end_trial() override;
+    void        keep_trial() override;
     bool        symmetric_tangent() const override;
     bool        use_convex_tangent() override;
     std::string failure_context() const override;

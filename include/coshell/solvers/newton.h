@@ -82,12 +82,29 @@ namespace coshell::solvers
 
     /// Factorizes the tangent and solves for the correction (distributed).
     dealii::Vector<double>
-           correction(NonlinearProblem             &problem,
-                      TangentMatrix                &tangent,
-                      const dealii::Vector<double> &residual) const;
-    double line_search_scale(NonlinearProblem             &problem,
-                             const dealii::Vector<double> &residual,
-                             const dealii::Vector<double> &correction) const;
+    correction(NonlinearProblem             &problem,
+               TangentMatrix                &tangent,
+               const dealii::Vector<double> &residual) const;
+    /// The line search's scale of a correction; whether it accepted an
+    /// evaluated trial (left applied), and whether that trial assembled
+    /// the tangent.
+    struct LineSearch
+    {
+      double scale        = 1;
+      bool   accepted     = false;
+      bool   with_tangent = false;
+    };
+    LineSearch line_search(NonlinearProblem             &problem,
+                           const dealii::Vector<double> &residual,
+                           const dealii::Vector<double> &correction,
+                           dealii::Vector<double>       &trial_residual,
+                           TangentMatrix                *tangent) const;
+    bool       apply_correction(NonlinearProblem       &problem,
+                                const LineSearch       &search,
+                                bool                    next_with_tangent,
+                                dealii::Vector<double> &du,
+                                dealii::Vector<double> &residual,
+                                dealii::Vector<double> &trial_residual) const;
   };
 
   /// Step-size policy shared by load stepping, arc length and time

@@ -82,6 +82,10 @@ namespace coshell::solvers
     /// may also put the iterate back exactly (no round-off).
     virtual void begin_trial() {}
     virtual void end_trial() {}
+    /// Instead of end_trial() (the caller does not undo the increment):
+    /// the trial iterate and what its evaluation changed become the
+    /// current ones, as if the increment had been applied and evaluated.
+    virtual void keep_trial() {}
 
     /// Whether the tangent is symmetric (lets a Cholesky solver be used).
     virtual bool symmetric_tangent() const = 0;
