@@ -14,9 +14,18 @@ namespace coshell::element
   FullMatrix<double> shell_mass(const SpatialTriangle &triangle,
                                 const MassProperties  &mass)
   {
-    const double       A          = area(triangle);
-    const double       areal_mass = mass.density * mass.thickness * A;
-    FullMatrix<double> m(18, 18);
+    FullMatrix<double> m;
+    shell_mass(triangle, mass, m);
+    return m;
+  }
+
+  void shell_mass(const SpatialTriangle &triangle,
+                  const MassProperties  &mass,
+                  FullMatrix<double>    &m)
+  {
+    const double A          = area(triangle);
+    const double areal_mass = mass.density * mass.thickness * A;
+    m.reinit(18, 18);
     for (unsigned int a = 0; a < 3; ++a)
       for (unsigned int b = 0; b < 3; ++b)
       {
@@ -31,12 +40,21 @@ namespace coshell::element
     for (unsigned int a = 0; a < 3; ++a)
       for (unsigned int d = 0; d < 3; ++d)
         m(6 * a + 3 + d, 6 * a + 3 + d) = rotary;
-    return m;
   }
 
   FullMatrix<double> drag_matrix(const SpatialTriangle &triangle,
                                  double                 normal_coefficient,
                                  double                 tangential_coefficient)
+  {
+    FullMatrix<double> c;
+    drag_matrix(triangle, normal_coefficient, tangential_coefficient, c);
+    return c;
+  }
+
+  void drag_matrix(const SpatialTriangle &triangle,
+                   double                 normal_coefficient,
+                   double                 tangential_coefficient,
+                   FullMatrix<double>    &c)
   {
     Tensor<1, 3> n =
         cross_product_3d(triangle[1] - triangle[0], triangle[2] - triangle[0]);
@@ -44,8 +62,8 @@ namespace coshell::element
     if (twice_area == 0)
       throw DegenerateTriangle("drag on a triangle of zero area");
     n /= twice_area;
-    const double       third_area = twice_area / 6;
-    FullMatrix<double> c(9, 9);
+    const double third_area = twice_area / 6;
+    c.reinit(9, 9);
     for (unsigned int a = 0; a < 3; ++a)
       for (unsigned int i = 0; i < 3; ++i)
         for (unsigned int j = 0; j < 3; ++j)
@@ -53,6 +71,5 @@ namespace coshell::element
               third_area *
               (tangential_coefficient * (i == j ? 1.0 : 0.0) +
                (normal_coefficient - tangential_coefficient) * n[i] * n[j]);
-    return c;
   }
 } // namespace coshell::element

@@ -35,6 +35,11 @@ namespace coshell::element
   /// exact rigid-body mass rho h A in every direction.
   dealii::FullMatrix<double> shell_mass(const SpatialTriangle &triangle,
                                         const MassProperties  &mass);
+  /// The same into 'matrix' (made 18x18), without allocating where it has
+  /// that size already.
+  void shell_mass(const SpatialTriangle      &triangle,
+                  const MassProperties       &mass,
+                  dealii::FullMatrix<double> &matrix);
 
   /// Viscous drag of a surrounding medium on the triangle, lumped to its
   /// vertices: per unit area -c_n (v.n) n - c_t (v - (v.n) n), with the
@@ -43,4 +48,9 @@ namespace coshell::element
   dealii::FullMatrix<double> drag_matrix(const SpatialTriangle &triangle,
                                          double normal_coefficient,
                                          double tangential_coefficient);
+  /// The same into 'matrix' (made 9x9).
+  void drag_matrix(const SpatialTriangle      &triangle,
+                   double                      normal_coefficient,
+                   double                      tangential_coefficient,
+                   dealii::FullMatrix<double> &matrix);
 } // namespace coshell::element

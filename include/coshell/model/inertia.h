@@ -91,22 +91,26 @@ namespace coshell::model
     /// body-frame translations the derivative of R w (w = v, or dv/dt +
     /// Omega x v with 'gyroscopic' = d v / d q) through the SE(3) step
     /// increment, translations and rotations.
-    dealii::FullMatrix<double>
-    times_rate_jacobian(const dealii::FullMatrix<double> &matrix,
-                        const CellIterator               &cell,
-                        const ShellState                 &state,
-                        Rate                              rate,
-                        double                            coefficient,
-                        double                            gyroscopic) const;
+    /// Into 'product'.
+    void times_rate_jacobian(const dealii::FullMatrix<double> &matrix,
+                             const CellIterator               &cell,
+                             const ShellState                 &state,
+                             Rate                              rate,
+                             double                            coefficient,
+                             double                            gyroscopic,
+                             dealii::FullMatrix<double>       &product) const;
     /// The inertia's tangent (or, with point.rate_mass, the mass matrix in
     /// the rates' layout) added to 'matrix'.
     void add_inertia_tangent(const CellIterator               &cell,
                              const EvaluationPoint            &point,
                              const dealii::FullMatrix<double> &mass,
                              dealii::FullMatrix<double>       &matrix) const;
-    dealii::FullMatrix<double>
-    damping(const CellIterator               &cell,
-            const element::SpatialTriangle   &current,
-            const dealii::FullMatrix<double> &mass) const;
+    /// The damping and drag matrix C of the cell into 'c' ('drag': room
+    /// for the drag's 9x9 block).
+    void damping(const CellIterator               &cell,
+                 const element::SpatialTriangle   &current,
+                 const dealii::FullMatrix<double> &mass,
+                 dealii::FullMatrix<double>       &c,
+                 dealii::FullMatrix<double>       &drag) const;
   };
 } // namespace coshell::model
