@@ -223,64 +223,45 @@ namespace coshell::contact
     return 0.25 * largest_thickness_;
   }
 
-  void Contact::Candidates::resize(unsigned int n_obstacles)
-  {
-    obstacle_origin.resize(n_obstacles);
-    vertex_triangle.resize(n_obstacles);
-    triangle_vertex.resize(n_obstacles);
-    edge_edge.resize(n_obstacles);
-  }
-
-  bool Contact::Coverage::all() const
-  {
-    return self &&
-           std::find(obstacle.begin(), obstacle.end(), false) == obstacle.end();
-  }
-
-  /// Per list, whether candidates_ covers the motion, and if so the
-  /// screen of its pairs.
-  Contact::Coverage Contact::covers(const Motion        &motion,
-                                    std::vector<Screen> &obstacle_screens,
-                                    Screen              &self_screen) const
+  /// Whether candidates_ covers the motion, and if so the screens of its
+  /// pairs: per obstacle, and for self contact.
+  bool Contact::covers(const Motion        &motion,
+                       std::vector<Screen> &obstacle_screens,
+                       Screen              &self_screen) const
   {
     const Candidates &c = candidates_;
-    Coverage          coverage;
+    if (c.margin < 0)
+      return false;
+    const double shell_now =
+        largest_drift(&shell_vertices_, motion.x, nullptr, c.shell);
+    const double shell_swept =
+        largest_drift(&shell_vertices_, motion.x, motion.dx, c.shell);
     if (parameters_.self_contact)
     {
       // A lens pushed along the injector mostly translates: its self
       // distances stay, and the lists with them.
-      const ListOrigin &origin = c.self_origin;
-      coverage.self            = origin.margin >= 0 &&
-                      2 * largest_relative_drift(shell_vertices_, motion.x,
-                                                 motion.dx, origin.shell) <=
-                          origin.margin;
-      if (coverage.self)
-        self_screen = {2 * largest_relative_drift(shell_vertices_, motion.x,
-                                                  nullptr, origin.shell)};
+      const double self_swept =
+          largest_relative_drift(shell_vertices_, motion.x, motion.dx, c.shell);
+      if (2 * self_swept > c.margin)
+        return false;
+      self_screen = {2 * largest_relative_drift(shell_vertices_, motion.x,
+                                                nullptr, c.shell)};
     }
-    coverage.obstacle.assign(current_.size(), false);
+    else
+      self_screen = {2 * shell_now};
     obstacle_screens.resize(current_.size());
     for (unsigned int o = 0; o < current_.size(); ++o)
     {
-      const ListOrigin &origin = c.obstacle_origin[o];
-      if (origin.margin < 0)
-        continue;
       const auto  *dX = o == motion.moving ? motion.dX : nullptr;
-      const double shell_now =
-          largest_drift(&shell_vertices_, motion.x, nullptr, origin.shell);
-      const double shell_swept = motion.dx
-                                     ? largest_drift(&shell_vertices_, motion.x,
-                                                     motion.dx, origin.shell)
-                                     : shell_now;
       const double now =
-          largest_drift(nullptr, current_[o], nullptr, origin.obstacle);
+          largest_drift(nullptr, current_[o], nullptr, c.obstacles[o]);
       const double swept =
-          dX ? largest_drift(nullptr, current_[o], dX, origin.obstacle) : now;
-      coverage.obstacle[o] = shell_swept + swept <= origin.margin;
-      if (coverage.obstacle[o])
-        obstacle_screens[o] = {shell_now + now};
+          dX ? largest_drift(nullptr, current_[o], dX, c.obstacles[o]) : now;
+      if (shell_swept + swept > c.margin)
+        return false;
+      obstacle_screens[o] = {shell_now + now};
     }
-    return coverage;
+    return true;
   }
 
   /// The lists of obstacle o for the motion, as far as 'margin' beyond
@@ -432,84 +413,68 @@ namespace coshell::contact
     }
   }
 
-  /// Makes the lists of candidates_ anew at the shell's positions x and
-  /// the obstacles' present ones where they no longer cover them; returns
-  /// the screens.
+  /// Makes candidates_ anew at the shell's positions x and the obstacles'
+  /// present ones unless they still cover them; returns the screens.
   void Contact::update_candidates(const std::vector<Point<3>> &x,
                                   std::vector<Screen>         &obstacle_screens,
                                   Screen                      &self_screen)
   {
     const Motion still{x, nullptr, invalid_obstacle, nullptr};
-    Candidates  &c = candidates_;
-    c.resize(current_.size());
-    const Coverage coverage = covers(still, obstacle_screens, self_screen);
-    if (coverage.all())
+    if (covers(still, obstacle_screens, self_screen))
       return;
-    const double margin     = candidate_margin();
-    const Tree   shell_tree = shell_triangle_tree(x, nullptr, 0);
+    Candidates &c = candidates_;
+    c.margin      = candidate_margin();
+    c.shell       = x;
+    c.obstacles   = current_;
+    c.vertex_triangle.resize(current_.size());
+    c.triangle_vertex.resize(current_.size());
+    c.edge_edge.resize(current_.size());
+    const Tree shell_tree = shell_triangle_tree(x, nullptr, 0);
     for (unsigned int o = 0; o < current_.size(); ++o)
-      if (!coverage.obstacle[o])
-      {
-        c.obstacle_origin[o] = {x, current_[o], margin};
-        make_obstacle_candidates(o, still, shell_tree, margin, true, c);
-        obstacle_screens[o] = Screen();
-      }
-    if (!coverage.self)
-    {
-      c.self_origin = {x, {}, margin};
-      make_self_candidates(still, shell_tree, margin, true, c);
-      self_screen = Screen();
-    }
+      make_obstacle_candidates(o, still, shell_tree, c.margin, true, c);
+    if (parameters_.self_contact)
+      make_self_candidates(still, shell_tree, c.margin, true, c);
+    obstacle_screens.assign(current_.size(), Screen());
+    self_screen = Screen();
   }
 
   /// Largest fraction of the motion that keeps every pair farther apart
   /// than its offset: additive CCD on the listed pairs the screens do
-  /// not clear. Each list is candidates_'s if it covers the motion, else
-  /// made for the motion alone (the shell's triangles and the moving
-  /// obstacle swept); for obstacle 'only' if given, else for all.
+  /// not clear. The lists are candidates_ if they cover the motion, else
+  /// made for it alone (the shell's triangles and the moving obstacle
+  /// swept), for obstacle 'only' if given, else for all.
   double Contact::filter_fraction(const Motion &motion, unsigned int only) const
   {
-    std::vector<Screen> screens;
+    std::vector<Screen> obstacle_screens;
     Screen              self_screen;
-    Coverage            coverage = covers(motion, screens, self_screen);
-    const bool          all      = only == invalid_obstacle;
-    const bool          self     = parameters_.self_contact && all;
-    for (unsigned int o = 0; o < current_.size(); ++o)
-      coverage.obstacle[o] = coverage.obstacle[o] || !(all || o == only);
-    coverage.self = coverage.self || !self;
-    Candidates swept;
-    if (!coverage.all())
+    const bool          cached = covers(motion, obstacle_screens, self_screen);
+    Candidates          swept;
+    if (!cached)
     {
-      swept.resize(current_.size());
+      obstacle_screens.assign(current_.size(), Screen());
+      swept.vertex_triangle.resize(current_.size());
+      swept.triangle_vertex.resize(current_.size());
+      swept.edge_edge.resize(current_.size());
       const Tree shell_tree = shell_triangle_tree(motion.x, motion.dx, 0);
       for (unsigned int o = 0; o < current_.size(); ++o)
-        if (!coverage.obstacle[o])
-        {
+        if (only == invalid_obstacle || o == only)
           make_obstacle_candidates(o, motion, shell_tree, 0, false, swept);
-          screens[o] = Screen();
-        }
-      if (!coverage.self)
-      {
+      if (parameters_.self_contact && only == invalid_obstacle)
         make_self_candidates(motion, shell_tree, 0, false, swept);
-        self_screen = Screen();
-      }
     }
     const double largest_move = largest_motion(motion.dx, motion.dX);
-    for (Screen &screen : screens)
+    for (Screen &screen : obstacle_screens)
       screen.largest_move = largest_move;
-    self_screen.largest_move = largest_move;
-    double fraction          = 1;
+    self_screen.largest_move   = largest_move;
+    const Candidates &c        = cached ? candidates_ : swept;
+    double            fraction = 1;
     for (unsigned int o = 0; o < current_.size(); ++o)
-      if (all || o == only)
-        fraction = std::min(
-            fraction, obstacle_filter_fraction(
-                          motion, o, coverage.obstacle[o] ? candidates_ : swept,
-                          screens[o]));
-    if (self)
-      fraction = std::min(
-          fraction,
-          self_filter_fraction(motion, coverage.self ? candidates_ : swept,
-                               self_screen));
+      if (only == invalid_obstacle || o == only)
+        fraction = std::min(fraction, obstacle_filter_fraction(
+                                          motion, o, c, obstacle_screens[o]));
+    if (parameters_.self_contact && only == invalid_obstacle)
+      fraction =
+          std::min(fraction, self_filter_fraction(motion, c, self_screen));
     return fraction;
   }
 

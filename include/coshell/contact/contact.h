@@ -379,36 +379,19 @@ namespace coshell::contact
       /// lists were made), so a restarted run repeats the uninterrupted one.
       void end_row();
     };
-    /// Where the two sides were when a list was made, and its margin
-    /// (length; < 0: none made yet).
-    struct ListOrigin
-    {
-      std::vector<dealii::Point<3>> shell, obstacle;
-      double                        margin = -1;
-    };
     /// The rows of every kind of pair: per obstacle, shell vertices (in
     /// the order of shell_vertices_) against its triangles, its vertices
     /// against shell triangles and shell edges against its edges; shell
     /// vertices against shell triangles and shell edges e against shell
-    /// edges f > e. Each obstacle's lists and the self lists have their
-    /// own origin and are made anew on their own: a lens pushed along a
-    /// nozzle keeps its self lists, and the plunger's advance does not
-    /// remake the cartridge's. See contact_candidates.cc.
+    /// edges f > e. With the positions they were made at and their
+    /// margin (length; < 0: none made yet). See contact_candidates.cc.
     struct Candidates
     {
-      std::vector<ListOrigin>    obstacle_origin;
-      ListOrigin                 self_origin;
+      std::vector<dealii::Point<3>>              shell;
+      std::vector<std::vector<dealii::Point<3>>> obstacles;
+      double                                     margin = -1;
       std::vector<CandidateRows> vertex_triangle, triangle_vertex, edge_edge;
       CandidateRows              self_vertex_triangle, self_edge_edge;
-      /// Sized for n obstacles, no list made.
-      void resize(unsigned int n_obstacles);
-    };
-    /// Which lists of candidates_ cover a motion.
-    struct Coverage
-    {
-      std::vector<bool> obstacle;
-      bool              self = true;
-      bool              all() const;
     };
     /// What a listed pair's distance tells without computing it: the
     /// pair is now at most 'shift' nearer than when listed.
@@ -443,31 +426,29 @@ namespace coshell::contact
     /// an obstacle may together drift this far (the shell half of it with
     /// self contact) before the lists are made anew.
     double candidate_margin() const;
-    /// Which lists cover the motion, and the screens of those that do
-    /// (the others' screens are left as they were).
-    Coverage covers(const Motion        &motion,
-                    std::vector<Screen> &obstacle_screens,
-                    Screen              &self_screen) const;
-    void     update_candidates(const std::vector<dealii::Point<3>> &x,
-                               std::vector<Screen> &obstacle_screens,
-                               Screen              &self_screen);
-    void     make_obstacle_candidates(unsigned int  o,
-                                      const Motion &motion,
-                                      const Tree   &shell_tree,
-                                      double        margin,
-                                      bool          measure,
-                                      Candidates   &c) const;
-    void     make_edge_candidates(unsigned int  o,
-                                  const Motion &motion,
-                                  const Tree   &obstacle_tree,
-                                  double        margin,
-                                  bool          measure,
-                                  Candidates   &c) const;
-    void     make_self_candidates(const Motion &motion,
-                                  const Tree   &shell_tree,
-                                  double        margin,
-                                  bool          measure,
-                                  Candidates   &c) const;
+    bool   covers(const Motion        &motion,
+                  std::vector<Screen> &obstacle_screens,
+                  Screen              &self_screen) const;
+    void   update_candidates(const std::vector<dealii::Point<3>> &x,
+                             std::vector<Screen> &obstacle_screens,
+                             Screen              &self_screen);
+    void   make_obstacle_candidates(unsigned int  o,
+                                    const Motion &motion,
+                                    const Tree   &shell_tree,
+                                    double        margin,
+                                    bool          measure,
+                                    Candidates   &c) const;
+    void   make_edge_candidates(unsigned int  o,
+                                const Motion &motion,
+                                const Tree   &obstacle_tree,
+                                double        margin,
+                                bool          measure,
+                                Candidates   &c) const;
+    void   make_self_candidates(const Motion &motion,
+                                const Tree   &shell_tree,
+                                double        margin,
+                                bool          measure,
+                                Candidates   &c) const;
     /// The step filter: the largest fraction of the motion that keeps
     /// every pair (of obstacle 'only', or of all and self contact) apart.
     double filter_fraction(const Motion &motion, unsigned int only) const;
