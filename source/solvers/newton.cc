@@ -197,9 +197,9 @@ namespace coshell::solvers
   /// s = 0, keeping a in [0.1, 1]. Rejected trials are undone; an
   /// accepted one is left applied, with its residual in 'trial_residual',
   /// for the caller to keep or undo. The first trial assembles 'tangent'
-  /// too if given: on the IOL injection 82 % of the line searches accept
-  /// it, and its evaluation is then the next iteration's. Later trials
-  /// are accepted less often than not, and assemble the residual alone.
+  /// too if given: on the IOL injection about 73 % of the line searches
+  /// accept it, and its evaluation is then the next iteration's. Later
+  /// trials are accepted less often, and assemble the residual alone.
   Newton::LineSearch Newton::line_search(NonlinearProblem     &problem,
                                          const Vector<double> &residual,
                                          const Vector<double> &correction,
