@@ -470,11 +470,11 @@ namespace coshell::model
       contribution->end_trial();
   }
 
+  /// What the trial's evaluation changed in the contributions (contact's
+  /// obstacles moved against the trial shape) simply stays.
   void ShellProblem::keep_trial()
   {
     trial_start_.reset();
-    for (const auto &contribution : contributions_)
-      contribution->keep_trial();
   }
 
   bool ShellProblem::symmetric_tangent() const

@@ -133,9 +133,6 @@ namespace coshell::model
     /// changed besides the iterate.
     virtual void begin_trial() {}
     virtual void end_trial() {}
-    /// See NonlinearProblem::keep_trial(): what the trial evaluation
-    /// changed stays (contact keeps the obstacles where it moved them).
-    virtual void keep_trial() {}
 
     virtual bool symmetric_tangent() const = 0;
     /// See NonlinearProblem::use_convex_tangent(): switch to a positive
