@@ -1104,6 +1104,14 @@ namespace coshell::element
         std::copy(source[i].begin(), source[i].end(), &target(i, 0));
     }
 
+    std::array<Tensor<1, 3>, 3> as_tensors(const Mat3<double> &e)
+    {
+      std::array<Tensor<1, 3>, 3> axes;
+      for (unsigned int a = 0; a < 3; ++a)
+        axes[a] = Tensor<1, 3>({e[a][0], e[a][1], e[a][2]});
+      return axes;
+    }
+
     CorotationalReference make_reference(const SpatialTriangle &initial)
     {
       CorotationalReference reference;
@@ -1125,9 +1133,9 @@ namespace coshell::element
   CorotationalShell::CorotationalShell(const SpatialTriangle     &initial,
                                        const ShellMaterial       &material,
                                        const ShellElementOptions &options)
-      : reference(make_reference(initial)), material(material),
-        options(options),
-        stiffness(shell_stiffness_local(reference.frame, material, options))
+      : reference(make_reference(initial)),
+        stiffness(shell_stiffness_local(reference.frame, material, options)),
+        recovery(reference.frame.planar, material, options)
   {
   }
 
@@ -1194,11 +1202,7 @@ namespace coshell::element
     if (tangent != nullptr)
     {
       // The paper's tangent: K_l rotated along the current frame only.
-      const Mat3<double>         &e = jets.frame();
-      std::array<Tensor<1, 3>, 3> axes;
-      for (unsigned int a = 0; a < 3; ++a)
-        axes[a] = Tensor<1, 3>({e[a][0], e[a][1], e[a][2]});
-      *tangent = rotate_to_global(stiffness, axes);
+      *tangent = rotate_to_global(stiffness, as_tensors(jets.frame()));
     }
   }
 
@@ -1207,33 +1211,10 @@ namespace coshell::element
                                 const NodalRotations  &rotations) const
   {
     // The initial shape carried rigidly onto the current frame has that
-    // frame as its element frame and the initial planar coordinates, so
-    // the linear resultants apply to it with d rotated to global axes.
+    // frame as its element frame and the initial planar coordinates: the
+    // linear resultants of d on the initial shape, with the current axes.
     const CorotatedKinematics<0> state(reference, current, rotations);
-    const Mat3<double>          &axes = state.frame();
-    const ShellDisplacements     d    = state.dofs();
-    const Point<3> centroid((current[0] + current[1] + current[2]) / 3.0);
-    const auto     to_global = [&](double a, double b, double c)
-    {
-      Tensor<1, 3> v;
-      for (unsigned int r = 0; r < 3; ++r)
-        v[r] = a * axes[0][r] + b * axes[1][r] + c * axes[2][r];
-      return v;
-    };
-
-    SpatialTriangle    carried;
-    ShellDisplacements global;
-    for (unsigned int i = 0; i < 3; ++i)
-      carried[i] = centroid + to_global(reference.coordinates[i][0],
-                                        reference.coordinates[i][1], 0.0);
-    for (unsigned int block = 0; block < 6; ++block)
-    {
-      const Tensor<1, 3> v =
-          to_global(d[3 * block], d[3 * block + 1], d[3 * block + 2]);
-      for (unsigned int r = 0; r < 3; ++r)
-        global[3 * block + r] = v[r];
-    }
-    return shell_resultants(carried, material, options, global);
+    return recovery.resultants(as_tensors(state.frame()), state.dofs());
   }
 
   Tensor<2, 3> rotation_exp(const Tensor<1, 3> &theta)

@@ -149,25 +149,79 @@ namespace coshell::element
     return local;
   }
 
+  namespace
+  {
+    /// The membrane forces and bending moments of element-frame DOFs.
+    ShellResultants local_resultants(const PlanarTriangle      &planar,
+                                     const ShellMaterial       &material,
+                                     const ShellElementOptions &options,
+                                     const ShellDisplacements  &local)
+    {
+      ShellResultants result;
+      if (options.membrane)
+        result.membrane_local =
+            membrane_forces(options, planar, material,
+                            sub_element_dofs(local, membrane_components));
+      if (options.bending)
+        result.bending_local =
+            bending_moments(*options.bending, planar, material,
+                            sub_element_dofs(local, bending_components));
+      return result;
+    }
+
+    void set_global_tensors(const ElementFrame &frame, ShellResultants &result)
+    {
+      result.membrane_global = to_global_tensor(frame, result.membrane_local);
+      result.bending_global  = to_global_tensor(frame, result.bending_local);
+    }
+  } // namespace
+
   ShellResultants shell_resultants(const SpatialTriangle     &triangle,
                                    const ShellMaterial       &material,
                                    const ShellElementOptions &options,
                                    const ShellDisplacements  &dofs)
   {
-    const ElementFrame       frame = make_element_frame(triangle);
-    const ShellDisplacements local = to_element_frame(frame, dofs);
+    const ElementFrame frame = make_element_frame(triangle);
+    ShellResultants result   = local_resultants(frame.planar, material, options,
+                                                to_element_frame(frame, dofs));
+    set_global_tensors(frame, result);
+    return result;
+  }
 
+  ResultantRecovery::ResultantRecovery(const PlanarTriangle      &planar,
+                                       const ShellMaterial       &material,
+                                       const ShellElementOptions &options)
+  {
+    // Both resultants are linear in the DOFs: column j is the response to
+    // the j-th unit DOF.
+    for (unsigned int j = 0; j < shell_dofs; ++j)
+    {
+      ShellDisplacements unit{};
+      unit[j] = 1;
+      const ShellResultants r =
+          local_resultants(planar, material, options, unit);
+      for (unsigned int k = 0; k < 3; ++k)
+      {
+        map_[k][j]     = r.membrane_local[k];
+        map_[3 + k][j] = r.bending_local[k];
+      }
+    }
+  }
+
+  ShellResultants
+  ResultantRecovery::resultants(const std::array<Tensor<1, 3>, 3> &axes,
+                                const ShellDisplacements          &local) const
+  {
     ShellResultants result;
-    if (options.membrane)
-      result.membrane_local =
-          membrane_forces(options, frame.planar, material,
-                          sub_element_dofs(local, membrane_components));
-    if (options.bending)
-      result.bending_local =
-          bending_moments(*options.bending, frame.planar, material,
-                          sub_element_dofs(local, bending_components));
-    result.membrane_global = to_global_tensor(frame, result.membrane_local);
-    result.bending_global  = to_global_tensor(frame, result.bending_local);
+    for (unsigned int k = 0; k < 3; ++k)
+      for (unsigned int j = 0; j < shell_dofs; ++j)
+      {
+        result.membrane_local[k] += map_[k][j] * local[j];
+        result.bending_local[k] += map_[3 + k][j] * local[j];
+      }
+    ElementFrame frame;
+    frame.axes = axes;
+    set_global_tensors(frame, result);
     return result;
   }
 } // namespace coshell::element

@@ -355,10 +355,11 @@ namespace coshell::model
     KineticMeasures result;
     if (damping_force)
       *damping_force = 0;
+    CellMatrices       &matrices = cell_matrices();
+    FullMatrix<double> &mass     = matrices.mass;
     for (const auto &cell : model_.dof_handler().active_cell_iterators())
     {
-      const FullMatrix<double> mass =
-          element::shell_mass(model_.triangle(cell), mass_properties(cell));
+      element::shell_mass(model_.triangle(cell), mass_properties(cell), mass);
       const auto velocity = spatial_rates(cell, state, Rate::velocity);
       const auto current  = current_triangle(model_, cell, state);
       std::array<double, element::shell_dofs> momentum{};
@@ -381,12 +382,15 @@ namespace coshell::model
         result.kinetic_energy += 0.5 * velocity[i] * momentum[i];
       if (parameters_.damped() && damping_force)
       {
-        FullMatrix<double> c, drag;
-        damping(cell, current, mass, c, drag);
+        FullMatrix<double> &c = matrices.damping;
+        damping(cell, current, mass, c, matrices.drag);
         for (unsigned int i = 0; i < element::shell_dofs; ++i)
+        {
+          double &force =
+              (*damping_force)[cell->vertex_dof_index(i / 6, i % 6)];
           for (unsigned int j = 0; j < element::shell_dofs; ++j)
-            (*damping_force)[cell->vertex_dof_index(i / 6, i % 6)] +=
-                c(i, j) * velocity[j];
+            force += c(i, j) * velocity[j];
+        }
       }
     }
     return result;

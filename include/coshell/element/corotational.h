@@ -105,9 +105,8 @@ namespace coshell::element
 
   private:
     CorotationalReference reference;
-    ShellMaterial         material;
-    ShellElementOptions   options;
     FullMatrix<double>    stiffness;
+    ResultantRecovery     recovery;
   };
 
   /// Lumped follower pressure on the current triangle: each vertex gets

@@ -71,6 +71,26 @@ namespace coshell::element
                                    const ShellElementOptions &options,
                                    const ShellDisplacements  &dofs);
 
+  /// The resultants of shell_resultants() as a linear map of the 18
+  /// element-frame DOFs, built once for a fixed planar shape: the
+  /// co-rotational element measures them on its initial shape at every
+  /// step, where rebuilding the DKT's and ANDES's strain matrices each
+  /// time cost more than the rest of the step's bookkeeping.
+  class ResultantRecovery
+  {
+  public:
+    ResultantRecovery(const PlanarTriangle      &planar,
+                      const ShellMaterial       &material,
+                      const ShellElementOptions &options);
+    /// From element-frame DOFs; the global tensors use 'axes' (e1, e2, e3).
+    ShellResultants resultants(const std::array<Tensor<1, 3>, 3> &axes,
+                               const ShellDisplacements          &local) const;
+
+  private:
+    /// Rows N_xx, N_yy, N_xy, M_xx, M_yy, M_xy.
+    std::array<std::array<double, shell_dofs>, 6> map_{};
+  };
+
   /// Rotates 18 global DOFs into the element frame (per node: local
   /// translations then local rotations).
   ShellDisplacements to_element_frame(const ElementFrame       &frame,
