@@ -10,8 +10,6 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
-#include <map>
-#include <set>
 
 namespace coshell::contact
 {
@@ -111,33 +109,23 @@ namespace coshell::contact
     }
     void settle()
     {
-      std::vector<double> gaps(candidates_.size());
-      for (unsigned int k = 0; k < candidates_.size(); ++k)
-        gaps[k] = candidates_[k].distance - contact_.offset(found_[k]);
-      std::vector<bool> keep =
-          contact_.parameters_.local_minima_only
-              ? local_minima(candidates_, gaps)
-              : std::vector<bool>(candidates_.size(), true);
-      // Of the candidates with the same closest features, the one with
-      // the smallest gap (the first of equals): triangles of different
-      // thickness may share the feature.
-      std::map<Key, unsigned int> smallest;
-      for (unsigned int k = 0; k < candidates_.size(); ++k)
-        if (keep[k] && candidates_[k].listed)
-        {
-          const auto [it, added] = smallest.emplace(key(k), k);
-          if (!added && gaps[k] < gaps[it->second])
-            it->second = k;
-        }
-      for (unsigned int k = 0; k < candidates_.size(); ++k)
+      const unsigned int n = candidates_.size();
+      gaps_.resize(n);
+      for (unsigned int k = 0; k < n; ++k)
+        gaps_[k] = candidates_[k].distance - contact_.offset(found_[k]);
+      const std::vector<bool> keep = contact_.parameters_.local_minima_only
+                                         ? local_minima(candidates_, gaps_)
+                                         : std::vector<bool>(n, true);
+      for (unsigned int k = 0; k < n; ++k)
       {
-        if (!keep[k] || !candidates_[k].listed || smallest.at(key(k)) != k ||
-            !seen_.insert(key(k)).second)
+        // Each settle() gathers the pairs of one point or edge, which is
+        // part of the key: pairs of different calls never share a key.
+        if (!keep[k] || !candidates_[k].listed || !smallest_of_its_key(k, keep))
           continue;
         contact_.pairs_.push_back(found_[k]);
-        contact_.smallest_gap_ = std::min(contact_.smallest_gap_, gaps[k]);
+        contact_.smallest_gap_ = std::min(contact_.smallest_gap_, gaps_[k]);
         contact_.largest_penetration_ =
-            std::max(contact_.largest_penetration_, -gaps[k]);
+            std::max(contact_.largest_penetration_, -gaps_[k]);
       }
       candidates_.clear();
       found_.clear();
@@ -160,10 +148,26 @@ namespace coshell::contact
               c.obstacle[1],
               c.obstacle[2]};
     }
+    /// Of the kept candidates with the same closest features, whether k
+    /// has the smallest gap (the first of equals): triangles of different
+    /// thickness may share the feature. A point has a handful of
+    /// candidates, so a scan beats a map.
+    bool smallest_of_its_key(unsigned int             k,
+                             const std::vector<bool> &keep) const
+    {
+      const Key own = key(k);
+      for (unsigned int j = 0; j < candidates_.size(); ++j)
+        if (j != k && keep[j] && candidates_[j].listed &&
+            (gaps_[j] < gaps_[k] || (gaps_[j] == gaps_[k] && j < k)) &&
+            key(j) == own)
+          return false;
+      return true;
+    }
+
     Contact               &contact_;
-    std::set<Key>          seen_;
     std::vector<Candidate> candidates_;
     std::vector<Pair>      found_;
+    std::vector<double>    gaps_;
   };
 
   void Contact::find_pairs(const std::vector<Point<3>> &x)
