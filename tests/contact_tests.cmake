@@ -291,6 +291,23 @@ coshell_bad_input_test(contact_negative_stiction_displacement
 coshell_bad_input_test(contact_penalty_step_filter_of_one
   "Contact/Penalty step filter: 1 must be below 1"
   ${plane_scene} --set "Contact/Penalty step filter=1")
+# A penalty too soft for the step filter: at 1e-6 N/mm^3 the rising plane
+# can press the plate no harder than 1e-6 x 0.025 N/mm^2 within the
+# filter's (1 - 0.9) h/2, far below the plate's weight (5.9e-6 N/mm^2), so
+# the plane cannot reach its position. Newton fails the step; so, since
+# 2026-11-26, does the linearized scheme when a move is still pending
+# (before, it accepted the frozen steps and wrote results as if the plane
+# had risen). Both name the obstacle and the two parameters that cure it.
+set(soft_penalty ${plane_scene} ${rising_plane}
+    --set "Contact/Penalty step filter=0.9"
+    --set "Contact/Penalty stiffness=1e-6")
+set(penalty_cure "raise Contact/Penalty stiffness .1e-06 N/mm.3 in mm-N units. or lower Contact/Penalty step filter")
+coshell_bad_input_test(contact_penalty_jam_newton
+  "Newton did not converge.*obstacle 'plane'.*${penalty_cure}"
+  ${soft_penalty})
+coshell_bad_input_test(contact_penalty_jam_linearized
+  "the linearized step failed: a prescribed move is still pending.*obstacle 'plane'.*${penalty_cure}"
+  ${soft_penalty} --set "Time integration/Method=linearized implicit euler")
 coshell_bad_input_test(contact_unparsable_motion
   "Contact/Obstacle 1/Translation: cannot parse '0.*-0.3..'"
   ${plane_scene} --set "Contact/Obstacle 1/Translation=0$<SEMICOLON> 0$<SEMICOLON> -0.3**")

@@ -29,6 +29,11 @@ namespace coshell::solvers
     /// The smallest scale the line search takes.
     constexpr double smallest_line_search_scale = 0.1;
 
+    /// Why a step that ends with a prescribed move pending has failed.
+    const std::string pending_move_note =
+        "a prescribed move is still pending: an obstacle or a prescribed "
+        "motion cannot reach its position (the shell is in its way: a jam)";
+
     /// What the last corrections of a failing attempt looked like: cut to
     /// the line search's floor, and climbing the energy (du.r < 0, the
     /// tangent indefinite along du). Their signature tells an indefinite
@@ -322,16 +327,13 @@ namespace coshell::solvers
       if (last_expected)
         problem.evaluate(residual, &tangent); // it was not the last after all
       if (iteration == parameters_.max_iterations)
-        throw NewtonFailure(
-            "Newton did not converge in " +
-            std::to_string(parameters_.max_iterations) +
-            " iterations (relative residual " +
-            short_number(relative_residual) + corrections.summary() + ")" +
-            (pending ? "; a prescribed move is still pending: an obstacle "
-                       "or a prescribed motion cannot reach its position "
-                       "(the shell is in its way: a jam)"
-                     : "") +
-            problem.failure_context());
+        throw NewtonFailure("Newton did not converge in " +
+                            std::to_string(parameters_.max_iterations) +
+                            " iterations (relative residual " +
+                            short_number(relative_residual) +
+                            corrections.summary() + ")" +
+                            (pending ? "; " + pending_move_note : "") +
+                            problem.failure_context());
       Vector<double> du = correction(problem, tangent, residual);
       // The energy slope along du; negative: du climbs the energy.
       const double slope = du * residual;
@@ -391,6 +393,12 @@ namespace coshell::solvers
         residual.l2_norm() / std::max(problem.force_scale(), 1e-300);
     if (!std::isfinite(relative_residual))
       throw NewtonFailure("non-finite residual");
+    // Newton's rule (no step converges while a move is pending) holds
+    // here too: accepted, such a step would leave the obstacle behind its
+    // schedule, and a jammed one would freeze the scene without a word.
+    if (problem.prescribed_increment_pending())
+      throw NewtonFailure("the linearized step failed: " + pending_move_note +
+                          problem.failure_context());
     Vector<double> du       = correction(problem, tangent, residual);
     const double   fraction = problem.admissible_fraction(du);
     if (fraction < 1)
