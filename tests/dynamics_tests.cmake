@@ -177,6 +177,18 @@ foreach(case "generalized alpha:0:R3xSO3" "generalized alpha:0.5:R3xSO3"
     ${energy} ${momentum})
 endforeach()
 
+# The linearized implicit Euler realizes a prescribed motion: the strip's
+# end turned by 2 pi t in dynamic steps of 5 ms reaches -2 pi x 0.02 =
+# -0.1256637 rad at t = 0.02 s (the constraint, exactly). Its increment is
+# pending at each step's one solve, which carries it out; a jammed obstacle
+# is what fails a linearized step (bad_input.contact_penalty_jam_*).
+coshell_dynamics_test(stages.strip_roll_up_linearized_prescribed_rotation
+  dynamics/strip_roll_up.prm ARGS --set "Stage 1/Analysis type=dynamic"
+  --set "Stage 1/Duration=0.02" --set "Stage 2/Analysis type=none"
+  --set "Time integration/Method=linearized implicit euler"
+  --set "Time integration/Time step=0.005"
+  --final tip_rotation -0.12566371 1e-8)
+
 # Displacement-driven stage then release: the strip rolled into a circle by
 # a prescribed end rotation springs open in a damped dynamic stage and
 # comes to rest flat.

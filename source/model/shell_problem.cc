@@ -337,11 +337,13 @@ namespace coshell::model
     for (auto &force : forces_)
       force = 0;
     const EvaluationPoint at = point();
+    blocked_                 = false;
     for (const auto &contribution : contributions_)
     {
       contribution->prepare(at);
-      pending_ = pending_ || contribution->pending();
+      blocked_ = blocked_ || contribution->pending();
     }
+    pending_         = pending_ || blocked_;
     const auto every = [](const Contribution &) { return true; };
     if (tangent && tangent->distributed())
     {
@@ -399,6 +401,11 @@ namespace coshell::model
   bool ShellProblem::prescribed_increment_pending() const
   {
     return pending_;
+  }
+
+  bool ShellProblem::prescribed_move_blocked() const
+  {
+    return blocked_;
   }
 
   void ShellProblem::distribute(Vector<double> &correction) const

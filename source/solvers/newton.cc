@@ -394,9 +394,11 @@ namespace coshell::solvers
     if (!std::isfinite(relative_residual))
       throw NewtonFailure("non-finite residual");
     // Newton's rule (no step converges while a move is pending) holds
-    // here too: accepted, such a step would leave the obstacle behind its
-    // schedule, and a jammed one would freeze the scene without a word.
-    if (problem.prescribed_increment_pending())
+    // for the moves the correction cannot realize: accepted, such a step
+    // would leave the obstacle behind its schedule, and a jammed one would
+    // freeze the scene without a word. (The constrained unknowns' pending
+    // increments are what this one correction carries out.)
+    if (problem.prescribed_move_blocked())
       throw NewtonFailure("the linearized step failed: " + pending_move_note +
                           problem.failure_context());
     Vector<double> du       = correction(problem, tangent, residual);

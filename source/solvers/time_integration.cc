@@ -132,6 +132,10 @@ namespace coshell::solvers
       {
         return problem_.prescribed_increment_pending();
       }
+      bool prescribed_move_blocked() const override
+      {
+        return problem_.prescribed_move_blocked();
+      }
       void distribute(Vector<double> &x) const override
       {
         problem_.distribute(x);

@@ -84,6 +84,7 @@ namespace coshell::model
                     solvers::TangentMatrix *tangent) override;
     double force_scale() const override;
     bool   prescribed_increment_pending() const override;
+    bool   prescribed_move_blocked() const override;
     void   distribute(dealii::Vector<double> &correction) const override;
     void   apply_increment(const dealii::Vector<double> &correction) override;
     double admissible_fraction(
@@ -183,6 +184,7 @@ namespace coshell::model
     /// On several ranks: this rank's share of the cell forces by kind.
     std::array<dealii::Vector<double>, n_force_kinds> rank_forces_;
     bool                                              pending_ = false;
+    bool                                              blocked_ = false;
     double                 converged_force_scale_              = 0;
     double                 force_floor_                        = 0;
     double                 assembly_seconds_                   = 0;

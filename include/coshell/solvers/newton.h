@@ -73,7 +73,7 @@ namespace coshell::solvers
     /// Exactly one correction from the current state, no convergence test
     /// (the linearized implicit scheme). Returns the relative residual
     /// before the correction. Throws NewtonFailure when the residual is not
-    /// finite or a prescribed move is still pending (a jam).
+    /// finite or a prescribed move was blocked (a jam).
     double single_correction(NonlinearProblem &problem,
                              const Observer   &observer = Observer()) const;
 

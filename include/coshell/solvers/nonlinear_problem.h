@@ -55,6 +55,15 @@ namespace coshell::solvers
       return false;
     }
 
+    /// True when the last evaluation had to leave a prescribed move short
+    /// (an obstacle held back by the shell). Unlike a constrained unknown's
+    /// increment, which the next correction realizes, no correction
+    /// carries it out: a step that ends so is jammed.
+    virtual bool prescribed_move_blocked() const
+    {
+      return false;
+    }
+
     /// Completes a correction solved on the free unknowns: sets the
     /// constrained entries (slaves and prescribed increments).
     virtual void distribute(dealii::Vector<double> &correction) const = 0;
