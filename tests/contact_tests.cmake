@@ -295,8 +295,8 @@ coshell_bad_input_test(contact_penalty_step_filter_of_one
 # can press the plate no harder than 1e-6 x 0.025 N/mm^2 within the
 # filter's (1 - 0.9) h/2, far below the plate's weight (5.9e-6 N/mm^2), so
 # the plane cannot reach its position. Newton fails the step; so, since
-# 2026-11-26, does the linearized scheme when a move is still pending
-# (before, it accepted the frozen steps and wrote results as if the plane
+# 2026-11-26, does the linearized scheme when an obstacle's move was
+# blocked (before, it accepted the frozen steps and wrote results as if the plane
 # had risen). Both name the obstacle and the two parameters that cure it.
 set(soft_penalty ${plane_scene} ${rising_plane}
     --set "Contact/Penalty step filter=0.9"
