@@ -1,5 +1,6 @@
 #include <coshell/driver/scene.h>
 
+#include "energy_guard.h"
 #include "staged_output.h"
 #include <coshell/io/csv_file.h>
 #include <coshell/io/expressions.h>
@@ -509,16 +510,6 @@ namespace coshell::driver
     /// External loads plus the reactions at constrained DoFs: the forces
     /// that do work on the shell. The reaction R balances the residual
     /// r = f_ext - f_int - f_inertia on a constrained row: R = -r.
-    void working_forces(const model::ShellProblem &problem, Vector<double> &g)
-    {
-      using model::ForceKind;
-      g                       = problem.force(ForceKind::external);
-      const auto &constraints = problem.constraints();
-      for (unsigned int i = 0; i < g.size(); ++i)
-        if (constraints.is_constrained(i))
-          g[i] = -problem.force(ForceKind::internal)[i] -
-                 problem.force(ForceKind::inertia)[i];
-    }
   } // namespace
 
   void Scene::write_step(const model::ShellModel &model,
@@ -648,7 +639,15 @@ namespace coshell::driver
     else if (std::isnan(result.initial_total_energy))
       result.initial_total_energy = inertia->measures(state).kinetic_energy +
                                     internal->strain_energy(state);
-    Vector<double> damping_force(model.n_dofs());
+    Vector<double>                      damping_force(model.n_dofs());
+    std::optional<EnergyGuard>          guard;
+    solvers::TimeIntegration::StepCheck check;
+    if (time_integration_.energy_growth_limit() > 0)
+    {
+      guard.emplace(problem, out.contact, out.generalized_force,
+                    out.contact_force, time_integration_.energy_growth_limit());
+      check = [&guard](const auto &record) { return guard->check(record); };
+    }
 
     const auto wall    = std::chrono::steady_clock::now();
     const auto on_step = [&](const solvers::TimeIntegration::StepRecord &record)
@@ -716,7 +715,7 @@ namespace coshell::driver
     const double assembly_before = problem.assembly_seconds();
     const double reached =
         advance_dynamic_stage(problem, from, start_time + stage.duration,
-                              out.step, on_step, on_iteration, log);
+                              out.step, on_step, on_iteration, check, log);
     result.simulated_time_s += reached - from;
     if (resuming)
       restart_.reset();
@@ -768,6 +767,7 @@ namespace coshell::driver
       unsigned int                                      &step,
       const solvers::TimeIntegration::StepObserver      &on_step,
       const solvers::TimeIntegration::IterationObserver &on_iteration,
+      const solvers::TimeIntegration::StepCheck         &check,
       std::ostream                                      &log)
   {
     computing_s_       = 0;
@@ -775,8 +775,8 @@ namespace coshell::driver
     {
       advance_started_ = std::chrono::steady_clock::now();
       time_integration_.run(problem, linear_solver_, path_following_.newton(),
-                            from, to, step, on_step, on_iteration, log,
-                            &carry_);
+                            from, to, step, on_step, on_iteration, log, &carry_,
+                            check);
       computing_s_ += seconds_since(advance_started_);
     };
     if (!commands_)

@@ -239,6 +239,19 @@ namespace coshell::solvers
     prm.declare_entry("Step growth factor", "1.5", Patterns::Double(1),
                       "Growth of the time step after an easy step "
                       "(dimensionless).");
+    prm.declare_entry(
+        "Energy growth limit", "0", Patterns::Double(0),
+        "Energy guard (dimensionless; 0: off). A converged step is "
+        "rejected and cut when the shell's energy (kinetic and strain) "
+        "grows over it by more than the work done on the shell in the "
+        "step (loads, supports' reactions, every contact force) plus this "
+        "fraction of the larger of the "
+        "energy at the step's start and that work. Catches Newton converging "
+        "to a spurious "
+        "state far from the step's start, which no residual test sees; "
+        "costs one strain-energy pass per step. Newton's schemes only: "
+        "a linearized step evaluates no forces at its end, and is not "
+        "judged.");
     prm.declare_entry("Progress interval", "5", Patterns::Double(0),
                       "Wall-clock seconds between progress lines (step, t, "
                       "dt, iterations, real-time factor); 0: every step.");
@@ -248,17 +261,18 @@ namespace coshell::solvers
   void TimeIntegration::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Time integration");
-    method_            = prm.get("Method");
-    se3_               = prm.get("Lie group") == "SE3";
-    time_step_         = prm.get_double("Time step");
-    min_time_step_     = prm.get_double("Minimum time step");
-    max_time_step_     = prm.get_double("Maximum time step");
-    spectral_radius_   = prm.get_double("Spectral radius");
-    end_time_          = prm.get_double("End time");
-    max_step_cuts_     = prm.get_integer("Maximum step cuts");
-    easy_iterations_   = prm.get_integer("Easy step iterations");
-    growth_factor_     = prm.get_double("Step growth factor");
-    progress_interval_ = prm.get_double("Progress interval");
+    method_              = prm.get("Method");
+    se3_                 = prm.get("Lie group") == "SE3";
+    time_step_           = prm.get_double("Time step");
+    min_time_step_       = prm.get_double("Minimum time step");
+    max_time_step_       = prm.get_double("Maximum time step");
+    spectral_radius_     = prm.get_double("Spectral radius");
+    end_time_            = prm.get_double("End time");
+    max_step_cuts_       = prm.get_integer("Maximum step cuts");
+    easy_iterations_     = prm.get_integer("Easy step iterations");
+    growth_factor_       = prm.get_double("Step growth factor");
+    progress_interval_   = prm.get_double("Progress interval");
+    energy_growth_limit_ = prm.get_double("Energy growth limit");
     prm.leave_subsection();
     const std::string where = "Time integration/";
     if (!(time_step_ > 0))
@@ -278,6 +292,11 @@ namespace coshell::solvers
   const std::string &TimeIntegration::method() const
   {
     return method_;
+  }
+
+  double TimeIntegration::energy_growth_limit() const
+  {
+    return energy_growth_limit_;
   }
 
   bool TimeIntegration::se3() const
@@ -318,7 +337,8 @@ namespace coshell::solvers
                                     const StepObserver      &on_step,
                                     const IterationObserver &on_iteration,
                                     std::ostream            &log,
-                                    Carry                   *carry) const
+                                    Carry                   *carry,
+                                    const StepCheck         &step_check) const
   {
     const bool     resume = carry && carry->filled();
     Scheme         scheme(method_, spectral_radius_);
@@ -373,6 +393,13 @@ namespace coshell::solvers
             scheme.linearized
                 ? (newton.single_correction(step_problem, observe), 1u)
                 : newton.solve(step_problem, observe);
+        // The linearized step evaluates no forces at its end, so its work
+        // is unknown there: the guard judges Newton's steps only.
+        if (step_check && !scheme.linearized)
+          if (const std::string reason =
+                  step_check({step + 1, t + h, h, iterations});
+              !reason.empty())
+            throw NewtonFailure(reason);
         scheme.accept();
         t += h;
         ++step;

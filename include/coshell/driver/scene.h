@@ -173,7 +173,7 @@ namespace coshell::driver
     /// Runs the time integration of a dynamic stage from 'start' to
     /// 'end', or, when driven interactively, to each target read until
     /// the stage's end, "quit" or the end of the input; returns the time
-    /// reached.
+    /// reached. 'check' judges each converged step (the energy guard).
     double advance_dynamic_stage(
         model::ShellProblem                               &problem,
         double                                             start,
@@ -181,6 +181,7 @@ namespace coshell::driver
         unsigned int                                      &step,
         const solvers::TimeIntegration::StepObserver      &on_step,
         const solvers::TimeIntegration::IterationObserver &on_iteration,
+        const solvers::TimeIntegration::StepCheck         &check,
         std::ostream                                      &log);
     /// The protocol's line for one step: time, the force on each
     /// obstacle (N, magnitude), the shell's centroid and the real-time

@@ -38,6 +38,10 @@ namespace coshell::solvers
       unsigned int iterations;
     };
     using StepObserver = std::function<void(const StepRecord &)>;
+    /// Judges a converged step before it is accepted: an empty string
+    /// accepts it, a reason rejects it, and the step is cut as after a
+    /// Newton failure (the energy guard, Energy growth limit).
+    using StepCheck = std::function<std::string(const StepRecord &)>;
 
     /// What the scheme carries from one step to the next besides the
     /// problem's state: generalized alpha's pseudo-acceleration a_n and the
@@ -70,10 +74,13 @@ namespace coshell::solvers
                      const StepObserver      &on_step,
                      const IterationObserver &on_iteration,
                      std::ostream            &log,
-                     Carry                   *carry = nullptr) const;
+                     Carry                   *carry      = nullptr,
+                     const StepCheck         &step_check = {}) const;
 
     const std::string &method() const;
     double             end_time() const;
+    /// Energy growth limit (dimensionless); 0: the guard is off.
+    double energy_growth_limit() const;
     /// Lie group = SE3: body-frame translations (ShellState).
     bool se3() const;
 
@@ -81,17 +88,18 @@ namespace coshell::solvers
     struct Scheme;
 
   private:
-    std::string  method_            = "generalized alpha";
-    bool         se3_               = false;
-    double       time_step_         = 1e-3;
-    double       min_time_step_     = 1e-9;
-    double       max_time_step_     = 1e-3;
-    double       spectral_radius_   = 0.9;
-    double       end_time_          = 1;
-    unsigned int max_step_cuts_     = 12;
-    unsigned int easy_iterations_   = 4;
-    double       growth_factor_     = 1.5;
-    double       progress_interval_ = 5;
+    std::string  method_              = "generalized alpha";
+    bool         se3_                 = false;
+    double       time_step_           = 1e-3;
+    double       min_time_step_       = 1e-9;
+    double       max_time_step_       = 1e-3;
+    double       spectral_radius_     = 0.9;
+    double       end_time_            = 1;
+    unsigned int max_step_cuts_       = 12;
+    unsigned int easy_iterations_     = 4;
+    double       growth_factor_       = 1.5;
+    double       progress_interval_   = 5;
+    double       energy_growth_limit_ = 0;
 
     void initial_acceleration(EvolutionProblem &problem,
                               LinearSolver     &linear_solver) const;
