@@ -14,8 +14,9 @@
 namespace coshell::driver
 {
   /// The forces whose work on the step increment changes the shell's
-  /// energy: the external loads at free DoFs, the supports' reactions
-  /// (-(internal + inertia)) at constrained ones.
+  /// energy: the external loads at free DoFs, the supports' reactions at
+  /// constrained ones (a reaction R balances the residual
+  /// r = f_ext - f_int - f_inertia on its row: R = -r).
   void working_forces(const model::ShellProblem &problem,
                       dealii::Vector<double>    &g);
 
@@ -24,11 +25,12 @@ namespace coshell::driver
   /// reactions and every contact force, the barrier's included, so the
   /// energy contact stores needs no term of its own) plus 'limit' times
   /// the larger of the step's starting energy and that work. Newton can
-  /// converge, after many iterations, to a state far from the step's start: the
-  /// residual is small there too, and only the energy tells (the released strip
-  /// of prm/dynamics/strip_roll_up.prm jumped from 158 to 13 139 in one step).
-  /// Everything it compares is part of the state a checkpoint stores, so
-  /// a restarted run judges its steps as the uninterrupted one does.
+  /// converge, after many iterations, to a state far from the step's
+  /// start: the residual is small there too, and only the energy tells
+  /// (the released strip of prm/dynamics/strip_roll_up.prm jumped from 158
+  /// to 13 139 in one step). Everything it compares is part of the state
+  /// a checkpoint stores, so a restarted run judges its steps as the
+  /// uninterrupted one does.
   class EnergyGuard
   {
   public:

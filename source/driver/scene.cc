@@ -504,14 +504,6 @@ namespace coshell::driver
     return motions;
   }
 
-  /// The files a staged run writes as it goes.
-  namespace
-  {
-    /// External loads plus the reactions at constrained DoFs: the forces
-    /// that do work on the shell. The reaction R balances the residual
-    /// r = f_ext - f_int - f_inertia on a constrained row: R = -r.
-  } // namespace
-
   void Scene::write_step(const model::ShellModel &model,
                          const model::ShellState &state,
                          StagedOutput            &out,
