@@ -56,6 +56,8 @@ namespace coshell::driver
     const double growth = energy - energy_ - work;
     const double scale  = std::max(energy_, std::abs(work));
     if (growth > limit_ * scale)
+    {
+      ++rejections_;
       return "the energy guard rejects the step: the mechanical energy went "
              "from " +
              solvers::short_number(energy_) + " to " +
@@ -65,6 +67,7 @@ namespace coshell::driver
              "Energy growth limit = " +
              solvers::short_number(limit_) +
              " allows (dt = " + solvers::short_number(record.dt) + " s)";
+    }
     energy_        = energy;
     working_force_ = g;
     if (contact_force)

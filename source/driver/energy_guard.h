@@ -45,6 +45,11 @@ namespace coshell::driver
     /// An empty string accepts the step (and remembers its energy and
     /// forces); a reason rejects it.
     std::string check(const solvers::TimeIntegration::StepRecord &record);
+    /// Steps rejected so far.
+    unsigned int rejections() const
+    {
+      return rejections_;
+    }
 
   private:
     double mechanical_energy() const;
@@ -52,6 +57,7 @@ namespace coshell::driver
     const model::ShellProblem &problem_;
     const contact::Contact    *contact_;
     double                     limit_, energy_;
+    unsigned int               rejections_ = 0;
     dealii::Vector<double>     working_force_, contact_force_;
   };
 } // namespace coshell::driver

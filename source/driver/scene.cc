@@ -709,6 +709,9 @@ namespace coshell::driver
         advance_dynamic_stage(problem, from, start_time + stage.duration,
                               out.step, on_step, on_iteration, check, log);
     result.simulated_time_s += reached - from;
+    if (guard)
+      result.energy_guard_rejections =
+          result.energy_guard_rejections.value_or(0) + guard->rejections();
     if (resuming)
       restart_.reset();
     result.dynamic_wall_time_s += seconds_since(wall);

@@ -71,6 +71,8 @@ namespace coshell::io
       json["simulated_time_s"] = simulated_time_s;
       if (!std::isnan(initial_total_energy))
         json["initial_total_energy"] = initial_total_energy;
+      if (energy_guard_rejections)
+        json["energy_guard_rejections"] = *energy_guard_rejections;
       write_split(json["time_stepping_s"], dynamic_wall_time_s,
                   dynamic_assembly_s, dynamic_linear_solver_s);
       // Simulated time over the wall time of the time stepping.

@@ -89,6 +89,10 @@ def main():
         rows = [r for r in rows if int(float(r["stage"])) == args.stage]
     t = columns(rows, "time")
     results, report = [], []
+    with open(os.path.join(args.output, "summary.json")) as f:
+        rejections = json.load(f).get("energy_guard_rejections")
+    if rejections is not None:  # reported, not asserted: round-off decides
+        print(f"info the energy guard rejected {rejections} step(s)")
 
     def check(ok, text, name=None, value=None):
         print(("ok   " if ok else "FAIL ") + text)

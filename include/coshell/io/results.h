@@ -4,6 +4,7 @@
 
 #include <limits>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -42,6 +43,9 @@ namespace coshell::io
     /// Kinetic + strain energy at the start of the first dynamic stage
     /// (the reference of "the energy does not grow"); NaN: none.
     double initial_total_energy = std::numeric_limits<double>::quiet_NaN();
+    /// Steps the energy guard rejected in this run (Time integration/
+    /// Energy growth limit); written only when the guard is on.
+    std::optional<unsigned int> energy_guard_rejections;
     /// Of that wall time: residual/tangent assembly and linear solver.
     double dynamic_assembly_s = 0, dynamic_linear_solver_s = 0;
     /// Static stages of a nonlinear analysis: the wall time of the load
