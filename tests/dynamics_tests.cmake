@@ -208,6 +208,8 @@ coshell_bad_input_test(dynamics_without_mass "dynamics and modes need mass: Mate
   ${vibration} --set "Material/Density=0")
 coshell_bad_input_test(negative_time_step "Time integration/Time step = -0.1 must be positive"
   ${vibration} --set "Time integration/Time step=-0.1")
+coshell_bad_input_test(negative_energy_growth_limit "Time integration/Energy growth limit=-1'.*Double 0"
+  ${vibration} --set "Time integration/Energy growth limit=-1")
 coshell_bad_input_test(minimum_above_maximum_step "Minimum time step = 0.1 exceeds Maximum time step = 0.01"
   ${vibration} --set "Time integration/Minimum time step=0.1"
   --set "Time integration/Maximum time step=0.01")
