@@ -1,3 +1,4 @@
+#include <coshell/element/shell_element.h>
 #include <coshell/model/direct_scatter.h>
 
 #include <algorithm>
@@ -80,5 +81,75 @@ namespace coshell::model
       if (k < length && pattern.column_number(row, k) == dofs[j])
         add_at(k++, local(i, j));
     }
+  }
+} // namespace coshell::model
+
+namespace coshell::model
+{
+  namespace
+  {
+    constexpr unsigned int entries_per_cell =
+        element::shell_dofs * element::shell_dofs;
+  } // namespace
+
+  void CellScatter::invalidate()
+  {
+    positions_.clear();
+    mapped_.clear();
+    pattern_ = nullptr;
+  }
+
+  bool CellScatter::worth_a_map(const unsigned int n_cells)
+  {
+    return std::size_t(n_cells) * entries_per_cell * sizeof(unsigned int) <=
+           largest_map_bytes;
+  }
+
+  void CellScatter::add(const FullMatrix<double>                   &local,
+                        const unsigned int                          cell_index,
+                        const std::vector<types::global_dof_index> &dofs,
+                        SparseMatrix<double>                       &matrix)
+  {
+    const SparsityPattern &pattern = matrix.get_sparsity_pattern();
+    if (&pattern != pattern_ || pattern.n_nonzero_elements() != n_entries_)
+    {
+      invalidate();
+      pattern_   = &pattern;
+      n_entries_ = pattern.n_nonzero_elements();
+    }
+    if (cell_index >= mapped_.size())
+    {
+      mapped_.resize(cell_index + 1, false);
+      positions_.resize(std::size_t(cell_index + 1) * entries_per_cell);
+    }
+    if (!mapped_[cell_index])
+      map_cell(cell_index, dofs, pattern);
+    const unsigned int *position =
+        positions_.data() + std::size_t(cell_index) * entries_per_cell;
+    // The matrix's value array through an iterator at its first entry: an
+    // accessor made from a linear index is that index, nothing more.
+    for (unsigned int i = 0; i < local.m(); ++i)
+      for (unsigned int j = 0; j < local.n(); ++j, ++position)
+        SparseMatrixIterators::Iterator<double, false>(&matrix, *position)
+            ->value() += local(i, j);
+  }
+
+  void CellScatter::map_cell(const unsigned int cell_index,
+                             const std::vector<types::global_dof_index> &dofs,
+                             const SparsityPattern &pattern)
+  {
+    AssertThrow(dofs.size() == element::shell_dofs,
+                ExcMessage("a cell block of another size than the shell's"));
+    unsigned int *position =
+        positions_.data() + std::size_t(cell_index) * entries_per_cell;
+    for (const auto row : dofs)
+      for (const auto column : dofs)
+      {
+        const std::size_t index = pattern(row, column);
+        AssertThrow(index != SparsityPattern::invalid_entry,
+                    ExcMessage("the sparsity pattern lacks a cell's coupling"));
+        *position++ = static_cast<unsigned int>(index);
+      }
+    mapped_[cell_index] = true;
   }
 } // namespace coshell::model

@@ -101,6 +101,7 @@ namespace coshell::model
   void ShellProblem::make_sparsities()
   {
     model_.make_sparsity(homogeneous_, sparsity_, coupled_vertices_);
+    cell_scatter_.invalidate();
     if (!solvers::distributed())
       return;
     if (!distributed_sparsity_)
@@ -216,12 +217,8 @@ namespace coshell::model
           for (unsigned int k = 0; k < n_cell_force_kinds; ++k)
             for (unsigned int i = 0; i < element::shell_dofs; ++i)
               kind_forces[k][copy.dofs[i]] += copy.forces_by_kind[k][i];
-          if (with_tangent && residual)
-            constraints_.distribute_local_to_global(
-                copy.matrix, copy.vector, copy.dofs, *tangent, *residual);
-          else if (with_tangent)
-            constraints_.distribute_local_to_global(copy.matrix, copy.dofs,
-                                                    *tangent);
+          if (with_tangent)
+            add_cell_terms(copy, *tangent, residual);
           else
             constraints_.distribute_local_to_global(copy.vector, copy.dofs,
                                                     *residual);
@@ -229,6 +226,31 @@ namespace coshell::model
         CellRange::owned);
     if (split)
       add_up_over_ranks(residual, tangent);
+  }
+
+  template<typename Matrix>
+  void ShellProblem::add_cell_terms(const CellContribution &copy,
+                                    Matrix                 &tangent,
+                                    Vector<double>         *residual)
+  {
+    // Trilinos matrices (MPI) keep deal.II's path, which also sends the
+    // entries of rows that other ranks own.
+    if constexpr (std::is_same_v<Matrix, SparseMatrix<double>>)
+      if (constraints_.n_constraints() == 0 &&
+          CellScatter::worth_a_map(
+              model_.dof_handler().get_triangulation().n_active_cells()))
+      {
+        if (residual)
+          for (unsigned int i = 0; i < copy.dofs.size(); ++i)
+            (*residual)(copy.dofs[i]) += copy.vector(i);
+        cell_scatter_.add(copy.matrix, copy.cell_index, copy.dofs, tangent);
+        return;
+      }
+    if (residual)
+      constraints_.distribute_local_to_global(copy.matrix, copy.vector,
+                                              copy.dofs, tangent, *residual);
+    else
+      constraints_.distribute_local_to_global(copy.matrix, copy.dofs, tangent);
   }
 
   void ShellProblem::add_up_over_ranks(Vector<double>       *residual,

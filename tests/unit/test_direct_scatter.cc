@@ -1,7 +1,10 @@
-// DirectScatter against deal.II's AffineConstraints::distribute_local_to_global
-// with no constraints: blocks with unsorted DoFs, some of whose couplings
-// the pattern lacks, give the same matrix and vector to the bit.
+// DirectScatter and CellScatter against deal.II's
+// AffineConstraints::distribute_local_to_global with no constraints: blocks
+// with unsorted DoFs, some of whose couplings the pattern lacks (contact
+// blocks), and repeated cell blocks give the same matrix and vector to the
+// bit.
 
+#include <coshell/element/shell_element.h>
 #include <coshell/model/direct_scatter.h>
 
 #include <deal.II/lac/affine_constraints.h>
@@ -79,4 +82,55 @@ TEST(DirectScatter, SameSumsAsDealIIAndLeavesOutWhatThePatternLacks)
   scatter.add(FullMatrix<double>(), values, {4, 6, 1}, nullptr, &only);
   EXPECT_EQ(only(6), 1.5);
   EXPECT_EQ(only.l1_norm(), 4.5);
+}
+
+TEST(CellScatter, SameSumsAsDealIIAcrossEvaluationsAndPatterns)
+{
+  const unsigned int n     = 40;
+  const unsigned int n_dof = coshell::element::shell_dofs;
+  // Three "cells" of 18 DoFs each, overlapping, in no sorted order.
+  std::vector<Dofs> cells(3, Dofs(n_dof));
+  for (unsigned int c = 0; c < cells.size(); ++c)
+    for (unsigned int i = 0; i < n_dof; ++i)
+      cells[c][i] = (7 * i + 11 * c) % n;
+  const auto make_pattern = [&](SparsityPattern &pattern, bool extra)
+  {
+    DynamicSparsityPattern dsp(n, n);
+    for (const auto &dofs : cells)
+      for (const auto i : dofs)
+        for (const auto j : dofs)
+          dsp.add(i, j);
+    if (extra) // a contact coupling that shifts the rows' entries
+      dsp.add(0, 39), dsp.add(39, 0);
+    pattern.copy_from(dsp);
+  };
+  AffineConstraints<double> none;
+  none.close();
+  coshell::model::CellScatter scatter;
+  for (const bool extra : {false, true})
+  {
+    SparsityPattern pattern;
+    make_pattern(pattern, extra);
+    SparseMatrix<double> direct(pattern), reference(pattern);
+    // Two evaluations: the second uses the map the first made.
+    for (unsigned int evaluation = 0; evaluation < 2; ++evaluation)
+    {
+      direct    = 0;
+      reference = 0;
+      for (unsigned int c = 0; c < cells.size(); ++c)
+      {
+        FullMatrix<double> local(n_dof);
+        for (unsigned int i = 0; i < n_dof; ++i)
+          for (unsigned int j = 0; j < n_dof; ++j)
+            local(i, j) = entry(c + 3 * evaluation, i, j);
+        scatter.add(local, c, cells[c], direct);
+        none.distribute_local_to_global(local, cells[c], reference);
+      }
+      for (unsigned int i = 0; i < n; ++i)
+        for (auto e = reference.begin(i); e != reference.end(i); ++e)
+          ASSERT_EQ(direct.el(i, e->column()), e->value())
+              << "entry (" << i << ", " << e->column() << "), pattern " << extra
+              << ", evaluation " << evaluation;
+    }
+  }
 }

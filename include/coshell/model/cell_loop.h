@@ -24,6 +24,7 @@ namespace coshell::model
     dealii::Vector<double>                       vector;
     std::vector<dealii::types::global_dof_index> dofs =
         std::vector<dealii::types::global_dof_index>(element::shell_dofs);
+    unsigned int cell_index = 0; ///< the cell's active_cell_index()
     /// The part of 'vector' of each force kind (internal, external,
     /// inertia): assembled unconstrained, they give the force scale of a
     /// nonlinear solve and the work of the loads.
@@ -63,6 +64,7 @@ namespace coshell::model
     {
       copy.error.clear();
       cell->get_dof_indices(copy.dofs);
+      copy.cell_index = cell->active_cell_index();
       try
       {
         compute(cell, copy);

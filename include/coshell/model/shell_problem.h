@@ -164,6 +164,14 @@ namespace coshell::model
     /// Adds contact blocks where no DoF is constrained (free-flying
     /// scenes).
     DirectScatter scatter_;
+    /// Adds the cells' matrices where no DoF is constrained; its map
+    /// follows sparsity_.
+    CellScatter cell_scatter_;
+    /// Adds a cell's matrix (and vector, if given) into 'tangent'.
+    template<typename Matrix>
+    void add_cell_terms(const CellContribution &copy,
+                        Matrix                 &tangent,
+                        dealii::Vector<double> *residual);
     /// Adds a contact block through scatter_ if the tangent is a deal.II matrix
     /// (or none) and no DoF is constrained; returns whether it did.
     template<typename Matrix>
