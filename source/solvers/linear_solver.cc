@@ -30,7 +30,21 @@ namespace coshell::solvers
   {
     UmfpackSolver umfpack;
     CholmodSolver cholmod;
-    bool          using_cholmod = false;
+    /// Whether cholmod is asked for (a symmetric matrix), and whose
+    /// factors solve() applies.
+    bool using_cholmod = false;
+    enum class Factors
+    {
+      none,
+      umfpack,
+      cholmod
+    } kept = Factors::none;
+    bool has_factors_of_size(unsigned int n_rows) const
+    {
+      return (kept == Factors::cholmod &&
+              cholmod.has_factors_of_size(n_rows)) ||
+             (kept == Factors::umfpack && umfpack.has_factors_of_size(n_rows));
+    }
     /// Created on first use: Trilinos objects need MPI running.
     std::unique_ptr<TrilinosWrappers::SparseMatrix>    trilinos_matrix;
     SolverControl                                      direct_control;
@@ -166,7 +180,7 @@ namespace coshell::solvers
                       "(dimensionless).");
     prm.declare_entry(
         "Reuse factorization", "false", Patterns::Bool(),
-        "umfpack (and cholmod's fallback to it): keep the LU factors of an "
+        "umfpack and cholmod: keep the factors (LU or Cholesky) of an "
         "earlier matrix and solve a new matrix of the same size by GMRES "
         "(right preconditioned, to 'Tolerance') with them, refactoring "
         "only when GMRES needs more than 'Reuse iterations', or needed "
@@ -224,41 +238,21 @@ namespace coshell::solvers
   {
     const Stopwatch timer(seconds_);
     backend_->using_cholmod = method_ == "cholmod" && symmetric;
-    if (backend_->using_cholmod)
-    {
-      // A symmetric tangent need not be positive definite (past a limit
-      // point, or the symmetrized co-rotational tangent under compression):
-      // then this factorization is UMFPACK's.
-      try
-      {
-        backend_->cholmod.factorize(matrix);
-        // The UMFPACK factors kept from before belong to another sequence
-        // of matrices: the next UMFPACK request factorizes afresh.
-        factors_worn_out_ = true;
-        unfactorized_     = nullptr;
-        return;
-      }
-      catch (const std::runtime_error &)
-      {
-        backend_->using_cholmod = false;
-        ++cholmod_fallbacks_;
-      }
-    }
     if (method_ == "umfpack" || method_ == "cholmod")
     {
       unfactorized_ = nullptr;
+      // Any kept factors precondition the new matrix, CHOLMOD's or
+      // UMFPACK's: GMRES only needs them near its inverse.
       if (reuse_factorization_ && !factors_worn_out_ &&
           factorizations_before_retry_ == 0 &&
-          backend_->umfpack.has_factors_of_size(matrix.m()))
+          backend_->has_factors_of_size(matrix.m()))
       {
         unfactorized_ = &matrix;
         return;
       }
       if (factorizations_before_retry_ > 0)
         --factorizations_before_retry_;
-      backend_->umfpack.factorize(matrix);
-      ++factorizations_;
-      factors_worn_out_ = false;
+      factorize_directly(matrix);
       return;
     }
     ensure_mpi_initialized();
@@ -277,6 +271,32 @@ namespace coshell::solvers
     if (release_matrix)
       release_matrix();
     set_up_trilinos_solver();
+  }
+
+  void LinearSolver::factorize_directly(const SparseMatrix<double> &matrix)
+  {
+    ++factorizations_;
+    factors_worn_out_ = false;
+    if (backend_->using_cholmod)
+    {
+      // A symmetric tangent need not be positive definite (past a limit
+      // point, or the symmetrized co-rotational tangent under compression):
+      // then this factorization is UMFPACK's.
+      try
+      {
+        backend_->cholmod.factorize(matrix);
+        backend_->kept = Backend::Factors::cholmod;
+        return;
+      }
+      catch (const std::runtime_error &)
+      {
+        backend_->using_cholmod = false;
+        ++cholmod_fallbacks_;
+      }
+    }
+    backend_->kept = Backend::Factors::none;
+    backend_->umfpack.factorize(matrix);
+    backend_->kept = Backend::Factors::umfpack;
   }
 
   void LinearSolver::factorize(TrilinosWrappers::SparseMatrix &&matrix)
@@ -416,23 +436,18 @@ namespace coshell::solvers
                            Refinement            refinement)
   {
     const Stopwatch timer(seconds_);
-    if (backend_->using_cholmod)
-    {
-      backend_->cholmod.solve(x, b);
-      last_iterations_ = 1;
-      return;
-    }
     if (method_ == "umfpack" || method_ == "cholmod")
     {
       if (unfactorized_ && solve_with_kept_factors(x, b))
         return;
       if (unfactorized_) // GMRES gave up: factorize after all
       {
-        backend_->umfpack.factorize(*unfactorized_);
-        ++factorizations_;
+        factorize_directly(*unfactorized_);
         unfactorized_ = nullptr;
       }
-      if (refinement == Refinement::none)
+      if (backend_->kept == Backend::Factors::cholmod)
+        backend_->cholmod.solve(x, b);
+      else if (refinement == Refinement::none)
         backend_->umfpack.apply_factors(x, b);
       else
         backend_->umfpack.solve(x, b);
@@ -454,13 +469,18 @@ namespace coshell::solvers
 
   namespace
   {
-    /// The kept UMFPACK factors as a deal.II preconditioner.
+    /// The kept factors (CHOLMOD's or UMFPACK's) as a deal.II
+    /// preconditioner.
     struct KeptFactors
     {
       const UmfpackSolver &umfpack;
+      const CholmodSolver *cholmod; ///< null: UMFPACK's factors
       void vmult(Vector<double> &x, const Vector<double> &b) const
       {
-        umfpack.apply_factors(x, b);
+        if (cholmod)
+          cholmod->solve(x, b);
+        else
+          umfpack.apply_factors(x, b);
       }
     };
   } // namespace
@@ -478,7 +498,11 @@ namespace coshell::solvers
     try
     {
       SolverGMRES<Vector<double>>(control, gmres)
-          .solve(*unfactorized_, x, b, KeptFactors{backend_->umfpack});
+          .solve(*unfactorized_, x, b,
+                 KeptFactors{backend_->umfpack,
+                             backend_->kept == Backend::Factors::cholmod
+                                 ? &backend_->cholmod
+                                 : nullptr});
     }
     catch (const SolverControl::NoConvergence &)
     {

@@ -57,6 +57,16 @@ namespace
       matrix.reinit(pattern);
     }
 
+    /// The symmetric operator with its diagonal shifted by 'shift':
+    /// positive definite for shift >= 0, indefinite far below.
+    const SparseMatrix<double> &set_symmetric(double shift)
+    {
+      set(0.0);
+      for (unsigned int i = 0; i < matrix.m(); ++i)
+        matrix.add(i, i, shift);
+      return matrix;
+    }
+
     const SparseMatrix<double> &set(double convection)
     {
       for (unsigned int i = 0; i < matrix.m(); ++i)
@@ -92,6 +102,51 @@ namespace
     error -= x;
     EXPECT_LT(error.linfty_norm(), tolerance * x.linfty_norm());
   }
+  /// Factorizes and solves set(0), then set(1) (the same matrix object,
+  /// changed); returns the second answer.
+  template<typename Set>
+  Vector<double> solve_two_matrices(LinearSolver         &solver,
+                                    const Set            &set,
+                                    const Vector<double> &b,
+                                    bool                  symmetric)
+  {
+    Vector<double> x(b.size());
+    for (unsigned int k = 0; k < 2; ++k)
+    {
+      solver.factorize(set(k), symmetric);
+      solver.solve(x, b);
+    }
+    return x;
+  }
+
+  void expect_counts(const LinearSolver &solver,
+                     unsigned int        factorizations,
+                     unsigned int        reused_solves,
+                     unsigned int        fallbacks)
+  {
+    EXPECT_EQ(solver.factorizations(), factorizations);
+    EXPECT_EQ(solver.reused_factor_solves(), reused_solves);
+    EXPECT_EQ(solver.cholmod_fallbacks(), fallbacks);
+  }
+
+  /// CHOLMOD with kept factors solves the symmetric operator of 'system'
+  /// and then the operator with its diagonal shifted by 'shift'; returns
+  /// the second answer.
+  Vector<double> shifted_after_cholmod(LinearSolver         &solver,
+                                       Tridiagonal          &system,
+                                       double                shift,
+                                       const Vector<double> &b)
+  {
+    configure(solver, {{"Method", "cholmod"},
+                       {"Reuse factorization", "true"},
+                       {"Tolerance", "1e-12"}});
+    return solve_two_matrices(
+        solver,
+        [&](unsigned int k) -> auto & {
+          return system.set_symmetric(shift * k);
+        },
+        b, true);
+  }
 } // namespace
 
 TEST(LinearSolverReuse, NearbyMatrixIsSolvedWithTheKeptFactors)
@@ -125,34 +180,58 @@ TEST(LinearSolverReuse, NearbyMatrixIsSolvedWithTheKeptFactors)
 TEST(LinearSolverReuse, FarMatrixIsFactorizedAfterAll)
 {
   Tridiagonal    system(200);
-  Vector<double> b(200), x(200);
+  Vector<double> b(200);
   b = 1.0;
   LinearSolver solver;
   configure(solver, true);
-  solver.factorize(system.set(0.0), false);
-  solver.solve(x, b);
   // Convection of the order of the diffusion: GMRES with the symmetric
   // operator's factors does not get there in 10 iterations.
-  const SparseMatrix<double> &far = system.set(0.9);
-  solver.factorize(far, false);
-  solver.solve(x, b);
-  EXPECT_EQ(solver.factorizations(), 2u);
-  EXPECT_EQ(solver.reused_factor_solves(), 0u);
-  expect_direct_answer(far, b, x, 1e-12);
+  const Vector<double> x = solve_two_matrices(
+      solver, [&](unsigned int k) -> auto & { return system.set(0.9 * k); }, b,
+      false);
+  expect_counts(solver, 2, 0, 0);
+  expect_direct_answer(system.matrix, b, x, 1e-12);
 }
 
 TEST(LinearSolverReuse, OffByDefault)
 {
   Tridiagonal    system(50);
-  Vector<double> b(50), x(50);
+  Vector<double> b(50);
   b = 1.0;
   LinearSolver solver;
   configure(solver, {});
-  solver.factorize(system.set(0.1), false);
-  solver.solve(x, b);
-  solver.factorize(system.set(0.1001), false);
-  solver.solve(x, b);
+  solve_two_matrices(
+      solver,
+      [&](unsigned int k) -> auto & { return system.set(0.1 + 1e-4 * k); }, b,
+      false);
   EXPECT_EQ(solver.reused_factor_solves(), 0u);
+}
+
+TEST(LinearSolverReuse, CholmodFactorsAreKeptToo)
+{
+  Tridiagonal    system(200);
+  Vector<double> b(200);
+  for (unsigned int i = 0; i < b.size(); ++i)
+    b[i] = 1.0 + std::sin(0.1 * i);
+  LinearSolver solver;
+  // A 1 % stiffer diagonal: GMRES with the first one's Cholesky factors.
+  const Vector<double> x = shifted_after_cholmod(solver, system, 0.02, b);
+  expect_counts(solver, 1, 1, 0);
+  expect_direct_answer(system.matrix, b, x, 1e-10);
+}
+
+TEST(LinearSolverReuse, IndefiniteMatrixAfterKeptCholmodFactorsGoesToUmfpack)
+{
+  Tridiagonal    system(200);
+  Vector<double> b(200);
+  b = 1.0;
+  LinearSolver solver;
+  // Shifted by -3.9 the operator is indefinite (by Gershgorin its
+  // eigenvalues lie in (-3.9, 2.1)). The old factors do not precondition
+  // it, CHOLMOD refuses it, and UMFPACK factorizes it.
+  const Vector<double> x = shifted_after_cholmod(solver, system, -3.9, b);
+  expect_counts(solver, 2, 0, 1);
+  expect_direct_answer(system.matrix, b, x, 1e-10);
 }
 
 // A Newton correction skips UMFPACK's iterative refinement: the factors

@@ -22,6 +22,9 @@ namespace coshell::solvers
     void factorize(const dealii::SparseMatrix<double> &matrix);
     void solve(dealii::Vector<double>       &x,
                const dealii::Vector<double> &b) const;
+    /// True once factorize() succeeded on a matrix of this size (and the
+    /// last attempt did not fail): solve() then applies those factors.
+    bool has_factors_of_size(unsigned int n_rows) const;
 
   private:
     struct Data;

@@ -140,8 +140,11 @@ namespace coshell::solvers
     struct Backend;
     std::unique_ptr<Backend> backend_;
 
-    void        set_up_trilinos_solver();
-    void        initialize_amg();
+    void set_up_trilinos_solver();
+    void initialize_amg();
+    /// Factorizes 'matrix' now (CHOLMOD if asked for and it succeeds,
+    /// UMFPACK otherwise); its factors become the kept ones.
+    void        factorize_directly(const dealii::SparseMatrix<double> &matrix);
     bool        solve_with_kept_factors(dealii::Vector<double>       &x,
                                         const dealii::Vector<double> &b);
     bool        is_amesos() const;
