@@ -126,8 +126,8 @@ namespace coshell::model
       map_cell(cell_index, dofs, pattern);
     const unsigned int *position =
         positions_.data() + std::size_t(cell_index) * entries_per_cell;
-    // The matrix's value array through an iterator at its first entry: an
-    // accessor made from a linear index is that index, nothing more.
+    // An iterator made from an index into the value array is that index,
+    // nothing more: no row is looked up.
     for (unsigned int i = 0; i < local.m(); ++i)
       for (unsigned int j = 0; j < local.n(); ++j, ++position)
         SparseMatrixIterators::Iterator<double, false>(&matrix, *position)
