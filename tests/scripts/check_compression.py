@@ -14,7 +14,8 @@ import csv
 import math
 import os
 
-from scene_runner import add_scene_arguments, exit_with, run_scene
+from scene_runner import (add_scene_arguments, exit_with,
+                          kept_factors_failures, run_scene)
 
 
 def read_clamp_forces(output):
@@ -89,6 +90,9 @@ def main():
                         help="the force's first drop starts at a diameter "
                         "in [D_SMALL, D_LARGE] mm (a buckle); later drops "
                         "are allowed")
+    parser.add_argument("--kept-factors-used", action="store_true",
+                        help="some solve used kept factors (with Linear "
+                        "solver/Reuse factorization)")
     args = parser.parse_args()
     run_scene(args.coshell, args.prm, args.output, args.set)
     forces, optic = read_clamp_forces(args.output), read_optic(args.output)
@@ -125,6 +129,8 @@ def main():
         failures.append(f"clamp forces differ by {imbalance} mN, more than "
                         f"1 % of {final[2]} mN")
     failures += check_growth(rows, final, args.buckle_between)
+    if args.kept_factors_used:
+        failures += kept_factors_failures(args.output)
     exit_with(failures)
 
 

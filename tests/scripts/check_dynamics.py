@@ -36,7 +36,7 @@ import shutil
 import subprocess
 import sys
 
-from scene_runner import add_scene_arguments, run_scene
+from scene_runner import add_scene_arguments, kept_factors_failures, run_scene
 
 
 def columns(rows, name):
@@ -80,6 +80,9 @@ def main():
     parser.add_argument("--energy-balance", type=float)
     parser.add_argument("--no-energy-growth", type=float)
     parser.add_argument("--report")
+    parser.add_argument("--kept-factors-used", action="store_true",
+                        help="some solve used kept factors (with Linear "
+                        "solver/Reuse factorization)")
     args = parser.parse_args()
 
     run_scene(args.coshell, args.prm, args.output, args.set)
@@ -164,6 +167,9 @@ def main():
         check(abs(last - float(value)) <= float(atol),
               f"{qoi} final {last:.6g} vs {value} (tolerance {atol})",
               f"final_{qoi}", last)
+    if args.kept_factors_used:
+        unused = kept_factors_failures(args.output)
+        check(not unused, "kept factors used" if not unused else unused[0])
     if args.report:
         with open(args.report, "a") as f:
             f.write("".join(line + "\n" for line in report))

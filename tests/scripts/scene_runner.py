@@ -1,6 +1,7 @@
 """Runs coshell on a scene into a fresh output directory (shared by the
 test checkers)."""
 import csv
+import json
 import os
 import shutil
 import subprocess
@@ -28,6 +29,18 @@ def add_scene_arguments(parser):
     parser.add_argument("--prm", required=True)
     parser.add_argument("--output", required=True)
     parser.add_argument("--set", action="append", default=[])
+
+
+def kept_factors_failures(output):
+    """For runs with Linear solver/Reuse factorization: a failure line if
+    no solve used kept factors, i.e. if the solver ignored the request
+    (as CHOLMOD did until 2026-11-27)."""
+    with open(os.path.join(output, "summary.json")) as f:
+        reused = json.load(f).get("reused_factor_solves", 0)
+    print(f"solves with kept factors: {reused}")
+    if reused > 0:
+        return []
+    return ["no solve used kept factors (summary.json reused_factor_solves)"]
 
 
 def exit_with(failures):
