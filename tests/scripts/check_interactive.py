@@ -2,14 +2,18 @@
 """The interactive protocol (coshell --interactive): targets on standard
 input, one line per step and one 'done' per target on standard output,
 the log on standard error. Feeds a scripted session and checks the
-replies."""
+replies. With --history-rows N the session is run again with Output/Steps
+between history rows = N: its time_history.csv must hold exactly the
+full run's rows of every N-th step and of the last one (the run ends at
+'quit', between two such steps), and its summary's quantities of
+interest must be the full run's."""
 import argparse
 import json
 import os
 import shutil
 import subprocess
 
-from scene_runner import exit_with
+from scene_runner import exit_with, read_rows
 
 SESSION = "0.1\n# a comment\nnot-a-time\n0.3\n0.2\nquit\n0.5\n"
 
@@ -20,12 +24,13 @@ def main():
     parser.add_argument("--prm", required=True)
     parser.add_argument("--output", required=True)
     parser.add_argument("--obstacles", type=int, required=True)
+    parser.add_argument("--history-rows", type=int, default=0,
+                        help="also run with Output/Steps between history "
+                             "rows = N and compare the histories")
     args = parser.parse_args()
     if os.path.isdir(args.output):
         shutil.rmtree(args.output)
-    run = subprocess.run([args.coshell, args.prm, "--interactive", "--output",
-                          args.output, "--set", "Output/Write VTU=false"],
-                         input=SESSION, capture_output=True, text=True)
+    run = run_session(args.coshell, args.prm, args.output)
     lines = run.stdout.splitlines()
     print("\n".join(lines))
     failures = []
@@ -54,7 +59,46 @@ def main():
     if abs(simulated - 0.3) > 1e-12:
         failures.append(f"summary.json: simulated_time_s {simulated}, not 0.3 "
                         "('quit' ends the run)")
+    if args.history_rows:
+        failures += sparse_history_failures(args, len(steps))
     exit_with(failures)
+
+
+def run_session(coshell, prm, output, settings=()):
+    command = [coshell, prm, "--interactive", "--output", output,
+               "--set", "Output/Write VTU=false"]
+    for setting in settings:
+        command += ["--set", setting]
+    return subprocess.run(command, input=SESSION, capture_output=True,
+                          text=True)
+
+
+def sparse_history_failures(args, n_steps):
+    """The session again with every N-th history row: the same rows where
+    both have one, the last step's row too, the same final quantities."""
+    n = args.history_rows
+    output = os.path.join(args.output, f"every_{n}th_row")
+    run = run_session(args.coshell, args.prm, output,
+                      [f"Output/Steps between history rows={n}"])
+    if run.returncode != 0:
+        return [f"with every {n}th history row: exit status "
+                f"{run.returncode}: {run.stderr[-500:]}"]
+    full = {row["step"]: row for row in
+            read_rows(os.path.join(args.output, "time_history.csv"))}
+    sparse = read_rows(os.path.join(output, "time_history.csv"))
+    steps = [int(row["step"]) for row in sparse]
+    expected = [s for s in range(1, n_steps + 1) if s % n == 0 or s == n_steps]
+    print(f"every {n}th history row: steps {steps} (expected {expected})")
+    failures = []
+    if steps != expected:
+        failures.append(f"history rows at steps {steps}, expected {expected}")
+    if any(row != full.get(row["step"]) for row in sparse):
+        failures.append("a sparse history row differs from the full run's")
+    summaries = [json.load(open(os.path.join(d, "summary.json")))["qoi"]
+                 for d in (args.output, output)]
+    if summaries[0] != summaries[1]:
+        failures.append("summary.json quantities differ with sparse rows")
+    return failures
 
 
 if __name__ == "__main__":

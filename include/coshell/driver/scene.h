@@ -100,6 +100,9 @@ namespace coshell::driver
     double                        next_checkpoint_time_ = 0;
     std::optional<io::Checkpoint> restart_;
     std::string                   restart_file_;
+    /// Output/Steps between history rows: time_history.csv gets every
+    /// n-th step of a dynamic stage and the stage's last.
+    unsigned int steps_between_history_rows_ = 1;
     /// The time integrator's carry-over within the current dynamic stage.
     solvers::TimeIntegration::Carry carry_;
 
@@ -126,9 +129,18 @@ namespace coshell::driver
     void
     record_contact(StagedOutput &out, unsigned int step, double time) const;
     std::map<std::string, double>
-                step_quantities(const model::ShellModel    &model,
-                                const model::ShellState    &state,
-                                const model::InternalForce *internal) const;
+    step_quantities(const model::ShellModel    &model,
+                    const model::ShellState    &state,
+                    const model::InternalForce *internal) const;
+    /// Appends the dynamic step's row to time_history.csv (energies,
+    /// momenta, the contact's work and energy, the quantities of interest)
+    /// and keeps its quantities as the level's.
+    void        write_history_row(const model::ShellProblem                  &problem,
+                                  const solvers::TimeIntegration::StepRecord &record,
+                                  const model::KineticMeasures               &kinetic,
+                                  unsigned int                                stage,
+                                  StagedOutput                               &out,
+                                  io::LevelResult &result) const;
     static void add_contact_work(const model::ShellProblem    &problem,
                                  const dealii::Vector<double> &q,
                                  StagedOutput                 &out);
