@@ -31,11 +31,20 @@ namespace coshell::driver
     energy_ = mechanical_energy();
   }
 
-  double EnergyGuard::mechanical_energy() const
+  double EnergyGuard::mechanical_energy()
   {
     const auto &state = problem_.state();
+    strain_energy_ =
+        problem_.find<model::InternalForce>()->strain_energy(state);
     return problem_.find<model::Inertia>()->measures(state).kinetic_energy +
-           problem_.find<model::InternalForce>()->strain_energy(state);
+           strain_energy_;
+  }
+
+  std::optional<double> EnergyGuard::accepted_strain_energy(double time) const
+  {
+    if (accepted_time_ == time)
+      return accepted_strain_energy_;
+    return std::nullopt;
   }
 
   std::string
@@ -68,8 +77,10 @@ namespace coshell::driver
              solvers::short_number(limit_) +
              " allows (dt = " + solvers::short_number(record.dt) + " s)";
     }
-    energy_        = energy;
-    working_force_ = g;
+    energy_                 = energy;
+    accepted_time_          = record.time;
+    accepted_strain_energy_ = strain_energy_;
+    working_force_          = g;
     if (contact_force)
       contact_force_ = *contact_force;
     return {};

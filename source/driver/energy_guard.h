@@ -9,6 +9,7 @@
 
 #include <deal.II/lac/vector.h>
 
+#include <optional>
 #include <string>
 
 namespace coshell::driver
@@ -50,13 +51,21 @@ namespace coshell::driver
     {
       return rejections_;
     }
+    /// The strain energy of the step the guard accepted last if that step
+    /// ended at 'time' (the time history then need not compute it again),
+    /// else nothing: linearized steps are not judged.
+    std::optional<double> accepted_strain_energy(double time) const;
 
   private:
-    double mechanical_energy() const;
+    /// Kinetic and strain energy of the current state; keeps the strain
+    /// energy in 'strain_energy_'.
+    double mechanical_energy();
 
     const model::ShellProblem &problem_;
     const contact::Contact    *contact_;
     double                     limit_, energy_;
+    double                     strain_energy_ = 0, accepted_strain_energy_ = 0;
+    std::optional<double>      accepted_time_;
     unsigned int               rejections_ = 0;
     dealii::Vector<double>     working_force_, contact_force_;
   };

@@ -599,11 +599,14 @@ namespace coshell::driver
                            const model::KineticMeasures               &kinetic,
                            unsigned int                                stage,
                            StagedOutput                               &out,
-                           io::LevelResult &result) const
+                           io::LevelResult                            &result,
+                           std::optional<double> known_strain_energy) const
   {
     const auto  &state         = problem.state();
     const auto  *internal      = problem.find<model::InternalForce>();
-    const double strain_energy = internal->strain_energy(state);
+    const double strain_energy = known_strain_energy
+                                     ? *known_strain_energy
+                                     : internal->strain_energy(state);
     result.qoi              = step_quantities(problem.model(), state, internal);
     std::vector<double> row = {double(out.step),
                                record.time,
@@ -708,7 +711,9 @@ namespace coshell::driver
       add_contact_work(problem, q, out);
       if (step % steps_between_history_rows_ == 0)
       {
-        write_history_row(problem, record, kinetic, stage.number, out, result);
+        write_history_row(problem, record, kinetic, stage.number, out, result,
+                          guard ? guard->accepted_strain_energy(record.time)
+                                : std::nullopt);
         unwritten_row.reset();
       }
       else

@@ -134,13 +134,16 @@ namespace coshell::driver
                     const model::InternalForce *internal) const;
     /// Appends the dynamic step's row to time_history.csv (energies,
     /// momenta, the contact's work and energy, the quantities of interest)
-    /// and keeps its quantities as the level's.
-    void        write_history_row(const model::ShellProblem                  &problem,
-                                  const solvers::TimeIntegration::StepRecord &record,
-                                  const model::KineticMeasures               &kinetic,
-                                  unsigned int                                stage,
-                                  StagedOutput                               &out,
-                                  io::LevelResult &result) const;
+    /// and keeps its quantities as the level's. 'known_strain_energy':
+    /// the state's, if the energy guard computed it already.
+    void write_history_row(
+        const model::ShellProblem                  &problem,
+        const solvers::TimeIntegration::StepRecord &record,
+        const model::KineticMeasures               &kinetic,
+        unsigned int                                stage,
+        StagedOutput                               &out,
+        io::LevelResult                            &result,
+        std::optional<double> known_strain_energy = std::nullopt) const;
     static void add_contact_work(const model::ShellProblem    &problem,
                                  const dealii::Vector<double> &q,
                                  StagedOutput                 &out);
