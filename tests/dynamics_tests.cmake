@@ -276,6 +276,17 @@ add_test(NAME restart.free_flying_plate
           --set "Time integration/Maximum time step=0.005"
           --end 1 --interval 0.25 --tolerance 1e-12
           --interactive-targets 0.3 0.7)
+# The same with Output/Steps between history rows = 7 (the 200 steps'
+# rows 7, 14, ..., 196 and 200): the restarted runs write the same rows,
+# the last one too where the last checkpoint is the stage's last step.
+add_test(NAME restart.free_flying_plate.thinned_history
+  COMMAND ${COSHELL_PYTHON} ${CHECK_RESTART} --coshell $<TARGET_FILE:coshell>
+          --prm ${COSHELL_PRM}/${free_flying}
+          --output ${CMAKE_CURRENT_BINARY_DIR}/output/restart.free_flying_plate.thinned_history
+          --set "Time integration/Time step=0.005"
+          --set "Time integration/Maximum time step=0.005"
+          --set "Output/Steps between history rows=7"
+          --end 1 --interval 0.25 --tolerance 1e-12)
 # The released strip's first 0.25 s with a checkpoint every 0.0625 s,
 # through the step the energy guard rejects (t = 1.0989 s): the restarted
 # runs rebuild the guard from the checkpoint's state and judge the steps as
@@ -287,7 +298,8 @@ add_test(NAME restart.strip_roll_up_then_release
           --output ${CMAKE_CURRENT_BINARY_DIR}/output/restart.strip_roll_up
           --end 0.25 --end-parameter "Stage 2/Duration" --interval 0.0625
           --tolerance 1e-12)
-set_tests_properties(restart.free_flying_plate restart.strip_roll_up_then_release
+set_tests_properties(restart.free_flying_plate
+  restart.free_flying_plate.thinned_history restart.strip_roll_up_then_release
   PROPERTIES LABELS dynamics)
 set_tests_properties(restart.free_flying_plate PROPERTIES
   FIXTURES_SETUP free_flying_checkpoint)

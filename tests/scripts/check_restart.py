@@ -17,10 +17,14 @@ check_restart.py --coshell BIN --prm FILE --output DIR [--set A/B=v ...]
    A's to TOL and its time_history.csv has A's rows.
 4. With --interactive-targets T1 T2 ...: run E through --interactive to
    those times and T; its final checkpoint equals A's to TOL.
+5. Run F from A's last checkpoint: its time_history.csv has A's rows and
+   its summary.json the same quantities of interest (a restart at the
+   stage's end takes no step: the quantities are the checkpoint's).
 """
 import argparse
 import csv
 import glob
+import json
 import os
 import re
 import shutil
@@ -128,13 +132,23 @@ def compare_histories(a, b, what):
               f"rows (largest difference {worst:.1e} of a value)")
 
 
+def last_step(history):
+    """The step of the last complete row of a time history being written
+    (its rows may be thinned: Output/Steps between history rows)."""
+    with open(history) as f:
+        lines = [line for line in f if line.endswith("\n")]
+    try:
+        return int(float(lines[-1].split(",")[0]))
+    except (IndexError, ValueError):  # no row yet, or the header only
+        return 0
+
+
 def interrupt_half_way(args, directory, steps, timing):
     process = run(args, directory, timing)
     partial = os.path.join(directory, "time_history.csv.partial")
     deadline = time.time() + 600
     while process.poll() is None and time.time() < deadline:
-        if os.path.exists(partial) and \
-                sum(1 for _ in open(partial)) > steps // 2:
+        if os.path.exists(partial) and last_step(partial) > steps // 2:
             process.send_signal(signal.SIGINT)
             break
         time.sleep(0.01)
@@ -142,10 +156,8 @@ def interrupt_half_way(args, directory, steps, timing):
     return process.returncode, err
 
 
-def resume_and_compare(args, reference, directory, checkpoint, final, timing,
-                       name):
-    """Restarts from 'checkpoint' into 'directory'; its final checkpoint and
-    time history must be the uninterrupted run's (in 'reference')."""
+def restart(args, directory, checkpoint, timing, name):
+    """Runs the scene from 'checkpoint' into 'directory' to its end."""
     command = [args.coshell, args.prm, "--output", directory, "--restart",
                checkpoint]
     for assignment in args.set + timing:
@@ -153,6 +165,13 @@ def resume_and_compare(args, reference, directory, checkpoint, final, timing,
     finish(subprocess.Popen(command, stdout=subprocess.PIPE,
                             stderr=subprocess.PIPE, text=True),
            f"the restarted run {name}")
+
+
+def resume_and_compare(args, reference, directory, checkpoint, final, timing,
+                       name):
+    """Restarts from 'checkpoint' into 'directory'; its final checkpoint and
+    time history must be the uninterrupted run's (in 'reference')."""
+    restart(args, directory, checkpoint, timing, name)
     compare_checkpoints(os.path.join(reference, final),
                         os.path.join(directory, final), args.tolerance,
                         f"{name} restarted from {os.path.basename(checkpoint)}")
@@ -249,8 +268,22 @@ def main():
         resume_and_compare(args, a, c, named.group(1), final, timing, "D")
     if args.interactive_targets:
         check_interactive(args, a, final, timing)
+    check_last_checkpoint(args, a, written[-1], timing)
     check_bad_files(args, written[len(written) // 2 - 1])
     exit_with(checks.failures)
+
+
+def check_last_checkpoint(args, reference, checkpoint, timing):
+    """Run F from the last checkpoint: A's rows and A's quantities."""
+    directory = os.path.join(args.output, "F")
+    restart(args, directory, checkpoint, timing, "F")
+    compare_histories(reference, directory, "F")
+    quantities = []
+    for run_directory in (reference, directory):
+        with open(os.path.join(run_directory, "summary.json")) as f:
+            quantities.append(json.load(f).get("qoi"))
+    check(quantities[0] == quantities[1] and quantities[0],
+          f"F: summary.json's quantities of interest are A's ({quantities[1]})")
 
 
 if __name__ == "__main__":
