@@ -147,15 +147,21 @@ namespace
         },
         b, true);
   }
+  /// A smooth right-hand side of n entries, 1 + sin(0.1 i).
+  Vector<double> smooth_load(unsigned int n)
+  {
+    Vector<double> b(n);
+    for (unsigned int i = 0; i < n; ++i)
+      b[i] = 1.0 + std::sin(0.1 * i);
+    return b;
+  }
 } // namespace
 
 TEST(LinearSolverReuse, NearbyMatrixIsSolvedWithTheKeptFactors)
 {
-  Tridiagonal    system(200);
-  Vector<double> b(200);
-  for (unsigned int i = 0; i < b.size(); ++i)
-    b[i] = 1.0 + std::sin(0.1 * i);
-  LinearSolver solver;
+  Tridiagonal          system(200);
+  const Vector<double> b = smooth_load(200);
+  LinearSolver         solver;
   configure(solver, true);
   Vector<double> x(b.size());
   solver.factorize(system.set(0.10), false);
@@ -209,11 +215,9 @@ TEST(LinearSolverReuse, OffByDefault)
 
 TEST(LinearSolverReuse, CholmodFactorsAreKeptToo)
 {
-  Tridiagonal    system(200);
-  Vector<double> b(200);
-  for (unsigned int i = 0; i < b.size(); ++i)
-    b[i] = 1.0 + std::sin(0.1 * i);
-  LinearSolver solver;
+  Tridiagonal          system(200);
+  const Vector<double> b = smooth_load(200);
+  LinearSolver         solver;
   // A 1 % stiffer diagonal: GMRES with the first one's Cholesky factors.
   const Vector<double> x = shifted_after_cholmod(solver, system, 0.02, b);
   expect_counts(solver, 1, 1, 0);
@@ -241,10 +245,9 @@ TEST(LinearSolverRefinement, WithoutRefinementTheFactorsSolveTheSystem)
 {
   Tridiagonal                 system(200);
   const SparseMatrix<double> &matrix = system.set(0.3);
-  Vector<double>              b(200), x(200), residual(200);
-  for (unsigned int i = 0; i < b.size(); ++i)
-    b[i] = 1.0 + std::sin(0.1 * i);
-  LinearSolver solver;
+  const Vector<double>        b      = smooth_load(200);
+  Vector<double>              x(200), residual(200);
+  LinearSolver                solver;
   configure(solver, false);
   solver.factorize(matrix, false);
   solver.solve(x, b, LinearSolver::Refinement::none);
