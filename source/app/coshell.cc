@@ -92,33 +92,9 @@ namespace
       return c;
     }
   };
-} // namespace
-
-int main(int argc, char **argv)
-{
-  // Serial runs start MPI lazily (see ensure_mpi_initialized).
-  if (coshell::solvers::launched_by_mpi_launcher())
-    coshell::solvers::ensure_mpi_initialized();
-  // Under mpirun every rank runs the scene; rank 0 alone logs and writes.
-  if (!coshell::solvers::writes_output())
-    std::cout.rdbuf(new DiscardingBuffer); // lives as long as std::cout
-  CommandLine line;
-  try
-  {
-    line = parse_command_line(argc, argv);
-    if (line.help || (line.prm_file.empty() && !line.print_parameters))
-    {
-      std::cout << usage;
-      return line.help ? 0 : 2;
-    }
-  }
-  catch (const std::exception &error)
-  {
-    std::cerr << "coshell: " << error.what() << "\n\n" << usage;
-    return 2;
-  }
-
-  try
+  /// Reads the parameters and runs the scene the command line names
+  /// (or prints the parameters); throws on bad input or a failed solve.
+  int run_scene(const CommandLine &line)
   {
     dealii::ParameterHandler prm;
     coshell::driver::Scene::declare_parameters(prm);
@@ -150,6 +126,37 @@ int main(int argc, char **argv)
     coshell::driver::install_interrupt_handlers();
     scene.run(output, log);
     log << "results written to " << output << "\n";
+    return 0;
+  }
+} // namespace
+
+int main(int argc, char **argv)
+{
+  // Serial runs start MPI lazily (see ensure_mpi_initialized).
+  if (coshell::solvers::launched_by_mpi_launcher())
+    coshell::solvers::ensure_mpi_initialized();
+  // Under mpirun every rank runs the scene; rank 0 alone logs and writes.
+  if (!coshell::solvers::writes_output())
+    std::cout.rdbuf(new DiscardingBuffer); // lives as long as std::cout
+  CommandLine line;
+  try
+  {
+    line = parse_command_line(argc, argv);
+    if (line.help || (line.prm_file.empty() && !line.print_parameters))
+    {
+      std::cout << usage;
+      return line.help ? 0 : 2;
+    }
+  }
+  catch (const std::exception &error)
+  {
+    std::cerr << "coshell: " << error.what() << "\n\n" << usage;
+    return 2;
+  }
+
+  try
+  {
+    return run_scene(line);
   }
   catch (const coshell::driver::Interrupted &stop)
   {
@@ -163,5 +170,4 @@ int main(int argc, char **argv)
     coshell::solvers::abort_other_ranks(1);
     return 1;
   }
-  return 0;
 }

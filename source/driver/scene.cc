@@ -645,104 +645,62 @@ namespace coshell::driver
     out.contact_force = force;
   }
 
-  void Scene::run_dynamic_stage(const Stage         &stage,
-                                model::ShellProblem &problem,
-                                double               start_time,
-                                StagedOutput        &out,
-                                io::LevelResult     &result,
-                                const std::string   &directory,
-                                std::ostream        &log)
+  /// One dynamic stage as its step observer sees it: the stage, its
+  /// outputs, the energy guard, and the scratch of the step's bookkeeping.
+  struct Scene::DynamicStageRun
   {
-    const auto    &model    = problem.model();
-    const auto    &state    = problem.state();
-    const auto    *internal = problem.find<model::InternalForce>();
-    const auto    *inertia  = problem.find<model::Inertia>();
-    Vector<double> g, q(model.n_dofs());
-    // A restart resumes at the checkpoint's time with its carry-over.
-    const bool   resuming = restart_ && restart_->stage == stage.number;
-    const double from     = resuming ? restart_->time : start_time;
-    if (!resuming)
-      carry_ = {};
-    // The forces at the start of the stage, for the work of the first step.
-    Vector<double> residual(model.n_dofs());
-    problem.set_time(from);
-    problem.evaluate(residual, nullptr);
-    working_forces(problem, out.generalized_force);
-    out.damping_force.reinit(model.n_dofs());
-    inertia->measures(state, &out.damping_force);
-    if (out.contact)
-      out.contact_force = problem.force(model::ForceKind::contact);
-    if (resuming)
+    DynamicStageRun(const Stage         &stage,
+                    model::ShellProblem &problem,
+                    double               start_time,
+                    StagedOutput        &out,
+                    io::LevelResult     &result,
+                    const std::string   &directory,
+                    std::ostream        &log)
+        : stage(stage), problem(problem), start_time(start_time), out(out),
+          result(result), directory(directory), log(log)
     {
-      out.generalized_force =
-          model.from_vertex_order(restart_->generalized_force);
-      out.damping_force = model.from_vertex_order(restart_->damping_force);
-      // A restart from the stage's last step takes no step: its summary
-      // reports the checkpoint's quantities.
-      result.qoi = step_quantities(model, state, internal);
-    }
-    else if (std::isnan(result.initial_total_energy))
-      result.initial_total_energy = inertia->measures(state).kinetic_energy +
-                                    internal->strain_energy(state);
-    Vector<double>                      damping_force(model.n_dofs());
-    std::optional<EnergyGuard>          guard;
-    solvers::TimeIntegration::StepCheck check;
-    if (time_integration_.energy_growth_limit() > 0)
-    {
-      guard.emplace(problem, out.contact, out.generalized_force,
-                    out.contact_force, time_integration_.energy_growth_limit());
-      check = [&guard](const auto &record) { return guard->check(record); };
     }
 
-    // Output/Steps between history rows: the stage's last step has a row
-    // too, written before a checkpoint of that step records the rows. An
-    // interactive run that stops inside the stage writes its last step's
-    // row when it stops.
-    const double stage_end  = start_time + stage.duration;
-    const auto   ends_stage = [stage_end](double time)
-    { return time >= stage_end - 1e-12 * std::max(1.0, std::abs(stage_end)); };
+    const Stage         &stage;
+    model::ShellProblem &problem;
+    double               start_time;
+    StagedOutput        &out;
+    io::LevelResult     &result;
+    const std::string   &directory;
+    std::ostream        &log;
+    /// Where the integration starts: the stage's start, or the restart's
+    /// time when the checkpoint lies inside this stage.
+    double                     from     = 0;
+    bool                       resuming = false;
+    std::optional<EnergyGuard> guard;
+    /// The step's working force, increment and damping force.
+    Vector<double> working_force, increment, damping_force;
+    /// Output/Steps between history rows: the last step's record while
+    /// its row is not written yet.
     std::optional<solvers::TimeIntegration::StepRecord> unwritten_row;
+
+    double end() const
+    {
+      return start_time + stage.duration;
+    }
+    bool ends_stage(double time) const
+    {
+      return time >= end() - 1e-12 * std::max(1.0, std::abs(end()));
+    }
+  };
+
+  void Scene::run_dynamic_stage(DynamicStageRun &run)
+  {
+    auto &problem = run.problem;
+    auto &out     = run.out;
+    auto &result  = run.result;
+    begin_dynamic_stage(run);
+    solvers::TimeIntegration::StepCheck check;
+    if (run.guard)
+      check = [&run](const auto &record) { return run.guard->check(record); };
     const auto wall    = std::chrono::steady_clock::now();
     const auto on_step = [&](const solvers::TimeIntegration::StepRecord &record)
-    {
-      const unsigned int step = ++out.step;
-      working_forces(problem, g);
-      // Displacement since the previous save (global axes, also with SE3).
-      problem.state().step_displacement(q);
-      out.external_work += 0.5 * ((g * q) + (out.generalized_force * q));
-      out.generalized_force = g;
-      const model::KineticMeasures kinetic =
-          inertia->measures(state, &damping_force);
-      out.dissipated_energy +=
-          0.5 * ((damping_force * q) + (out.damping_force * q));
-      // Friction's dissipation over the step (0 without friction).
-      if (out.contact)
-        out.dissipated_energy += out.contact->step_friction_dissipation();
-      out.damping_force = damping_force;
-      add_contact_work(problem, q, out);
-      if (step % steps_between_history_rows_ == 0 || ends_stage(record.time))
-      {
-        write_history_row(problem, record, kinetic, stage.number, out, result,
-                          guard ? guard->accepted_strain_energy(record.time)
-                                : std::nullopt);
-        unwritten_row.reset();
-      }
-      else
-        unwritten_row = record;
-      result.steps = step;
-      result.newton_iterations += record.iterations;
-      record_contact(out, step, record.time);
-      if (output_.wants_step(step))
-        write_step(model, state, out, directory, step, record.time);
-      checkpoint_step(problem, out, stage, record.time, directory, log);
-      // Interactive runs count only the time spent computing, not the
-      // time spent waiting for the next target.
-      if (replies_)
-        reply_step(
-            problem, out, record.time,
-            (record.time - start_time) /
-                std::max(computing_s_ + seconds_since(advance_started_), 1e-9));
-    };
+    { record_dynamic_step(run, record); };
     const auto on_iteration =
         [&](unsigned int step, const solvers::NewtonIteration &record)
     {
@@ -755,20 +713,134 @@ namespace coshell::driver
     const double solver_before   = linear_solver_.seconds();
     const double assembly_before = problem.assembly_seconds();
     const double reached =
-        advance_dynamic_stage(problem, from, start_time + stage.duration,
-                              out.step, on_step, on_iteration, check, log);
-    if (unwritten_row)
-      write_history_row(problem, *unwritten_row, inertia->measures(state),
-                        stage.number, out, result);
-    result.simulated_time_s += reached - from;
-    if (guard)
-      result.energy_guard_rejections =
-          result.energy_guard_rejections.value_or(0) + guard->rejections();
-    if (resuming)
-      restart_.reset();
+        advance_dynamic_stage(problem, run.from, run.end(), out.step, on_step,
+                              on_iteration, check, run.log);
+    finish_dynamic_stage(run, reached);
     result.dynamic_wall_time_s += seconds_since(wall);
     result.dynamic_assembly_s += problem.assembly_seconds() - assembly_before;
     result.dynamic_linear_solver_s += linear_solver_.seconds() - solver_before;
+  }
+
+  void Scene::begin_dynamic_stage(DynamicStageRun &run)
+  {
+    auto          &out     = run.out;
+    auto          &problem = run.problem;
+    const auto    &model   = problem.model();
+    const auto    &state   = problem.state();
+    const auto    *inertia = problem.find<model::Inertia>();
+    const unsigned n       = model.n_dofs();
+    run.working_force.reinit(n);
+    run.increment.reinit(n);
+    run.damping_force.reinit(n);
+    // A restart resumes at the checkpoint's time with its carry-over.
+    run.resuming = restart_ && restart_->stage == run.stage.number;
+    run.from     = run.resuming ? restart_->time : run.start_time;
+    if (!run.resuming)
+      carry_ = {};
+    // The forces at the start of the stage, for the work of the first step.
+    Vector<double> residual(n);
+    problem.set_time(run.from);
+    problem.evaluate(residual, nullptr);
+    working_forces(problem, out.generalized_force);
+    out.damping_force.reinit(n);
+    inertia->measures(state, &out.damping_force);
+    if (out.contact)
+      out.contact_force = problem.force(model::ForceKind::contact);
+    const auto *internal = problem.find<model::InternalForce>();
+    if (run.resuming)
+    {
+      out.generalized_force =
+          model.from_vertex_order(restart_->generalized_force);
+      out.damping_force = model.from_vertex_order(restart_->damping_force);
+      // A restart from the stage's last step takes no step: its summary
+      // reports the checkpoint's quantities.
+      run.result.qoi = step_quantities(model, state, internal);
+    }
+    else if (std::isnan(run.result.initial_total_energy))
+      run.result.initial_total_energy =
+          inertia->measures(state).kinetic_energy +
+          internal->strain_energy(state);
+    if (time_integration_.energy_growth_limit() > 0)
+      run.guard.emplace(problem, out.contact, out.generalized_force,
+                        out.contact_force,
+                        time_integration_.energy_growth_limit());
+  }
+
+  model::KineticMeasures Scene::account_step_energies(DynamicStageRun &run)
+  {
+    auto           &out = run.out;
+    Vector<double> &g = run.working_force, &q = run.increment;
+    working_forces(run.problem, g);
+    // Displacement since the previous save (global axes, also with SE3).
+    run.problem.state().step_displacement(q);
+    out.external_work += 0.5 * ((g * q) + (out.generalized_force * q));
+    out.generalized_force = g;
+    const model::KineticMeasures kinetic =
+        run.problem.find<model::Inertia>()->measures(run.problem.state(),
+                                                     &run.damping_force);
+    out.dissipated_energy +=
+        0.5 * ((run.damping_force * q) + (out.damping_force * q));
+    // Friction's dissipation over the step (0 without friction).
+    if (out.contact)
+      out.dissipated_energy += out.contact->step_friction_dissipation();
+    out.damping_force = run.damping_force;
+    add_contact_work(run.problem, q, out);
+    return kinetic;
+  }
+
+  void
+  Scene::record_dynamic_step(DynamicStageRun                            &run,
+                             const solvers::TimeIntegration::StepRecord &record)
+  {
+    auto              &out     = run.out;
+    const auto        &problem = run.problem;
+    const unsigned int step    = ++out.step;
+    const auto         kinetic = account_step_energies(run);
+    // Output/Steps between history rows: the stage's last step has a row
+    // too, written before a checkpoint of that step records the rows. An
+    // interactive run that stops inside the stage writes its last step's
+    // row when it stops (finish_dynamic_stage).
+    if (step % steps_between_history_rows_ == 0 || run.ends_stage(record.time))
+    {
+      write_history_row(
+          problem, record, kinetic, run.stage.number, out, run.result,
+          run.guard ? run.guard->accepted_strain_energy(record.time)
+                    : std::nullopt);
+      run.unwritten_row.reset();
+    }
+    else
+      run.unwritten_row = record;
+    run.result.steps = step;
+    run.result.newton_iterations += record.iterations;
+    record_contact(out, step, record.time);
+    if (output_.wants_step(step))
+      write_step(problem.model(), problem.state(), out, run.directory, step,
+                 record.time);
+    checkpoint_step(problem, out, run.stage, record.time, run.directory,
+                    run.log);
+    // Interactive runs count only the time spent computing, not the
+    // time spent waiting for the next target.
+    if (replies_)
+      reply_step(
+          problem, out, record.time,
+          (record.time - run.start_time) /
+              std::max(computing_s_ + seconds_since(advance_started_), 1e-9));
+  }
+
+  void Scene::finish_dynamic_stage(DynamicStageRun &run, double reached)
+  {
+    auto &result = run.result;
+    if (run.unwritten_row)
+      write_history_row(
+          run.problem, *run.unwritten_row,
+          run.problem.find<model::Inertia>()->measures(run.problem.state()),
+          run.stage.number, run.out, result);
+    result.simulated_time_s += reached - run.from;
+    if (run.guard)
+      result.energy_guard_rejections =
+          result.energy_guard_rejections.value_or(0) + run.guard->rejections();
+    if (run.resuming)
+      restart_.reset();
   }
 
   void Scene::drive_interactively(std::istream &commands, std::ostream &replies)
@@ -960,91 +1032,119 @@ namespace coshell::driver
           .set_initial_velocity(state);
       state.save();
     }
-    std::unique_ptr<contact::Contact> contact;
-    if (contact_.enabled())
-    {
-      contact = std::make_unique<contact::Contact>(
-          model, contact_,
-          contact_.barrier_stiffness_from_load
-              ? mean_dead_load_pressure(model, loads_)
-              : 0.0);
-      contact->check_initial_configuration(state, 0);
-      out.contact = contact.get();
-      out.contact_forces.emplace(
-          directory + "/contact_forces.csv",
-          std::vector<std::string>{"step", "time", "obstacle", "fx", "fy", "fz",
-                                   "mx", "my", "mz", "active_pairs",
-                                   "min_distance", "work", "ux", "uy", "uz"});
-    }
+    const auto contact = start_contact(model, state, out, directory);
     if (restart_)
       restore_checkpoint(state, out, earlier, directory, log);
     double start_time = 0;
     for (const Stage &stage : stages_.list())
     {
-      if (skipped_by_restart(stage.number))
-      {
-        start_time += stage.duration;
-        continue;
-      }
-      auto phase = std::chrono::steady_clock::now();
-      if (stages_.staged())
-        log << stage.name() << ", t = " << start_time << " .. "
-            << start_time + stage.duration << " s\n";
-      const bool dynamic       = stage.analysis == "dynamic";
-      auto       contributions = static_contributions(
-                model, loads_, element_.formulation, path_following_.tangent(),
-                path_following_.extrapolated_geometric_stiffness(dynamic),
-                path_following_.exact_tangent_after_failure(), log);
-      if (dynamic)
-        contributions.push_back(std::make_unique<model::Inertia>(
-            model, inertia_, time_integration_.se3()));
-      if (contact)
-        contributions.push_back(
-            std::make_unique<contact::ContactContribution>(*contact));
-      model::ShellProblem problem(model, state, stage_constraints(model, stage),
-                                  std::move(contributions),
-                                  motions_.increments(model, stage.motions));
-      problem.set_schedule({start_time, stage.duration, stage.load_factor});
-      problem.set_correction_limits(correction_limits_);
-      linear_solver_.check_applicable(non_symmetric_reason(problem));
-      if (restart_ && restart_->stage == stage.number)
-        problem.set_converged_force_scale(restart_->converged_force_scale);
-      result.wall_time_s.setup += seconds_since(phase);
-      phase = std::chrono::steady_clock::now();
-      if (dynamic)
-        run_dynamic_stage(stage, problem, start_time, out, result, directory,
-                          log);
-      else
-        run_static_stage(stage, problem, out, result, directory, log);
-      result.wall_time_s.solve += seconds_since(phase);
+      if (!skipped_by_restart(stage.number))
+        run_stage(stage, model, state, start_time, out, result, directory, log);
       start_time += stage.duration;
     }
+    finish_staged_outputs(model, state, start_time, out, result, directory);
+    return result;
+  }
 
-    const auto         phase = std::chrono::steady_clock::now();
-    const unsigned int last  = out.step;
-    if (out.last_written != last)
-      write_step(model, state, out, directory, last, start_time);
+  std::unique_ptr<contact::Contact>
+  Scene::start_contact(const model::ShellModel &model,
+                       const model::ShellState &state,
+                       StagedOutput            &out,
+                       const std::string       &directory) const
+  {
+    if (!contact_.enabled())
+      return nullptr;
+    auto contact = std::make_unique<contact::Contact>(
+        model, contact_,
+        contact_.barrier_stiffness_from_load
+            ? mean_dead_load_pressure(model, loads_)
+            : 0.0);
+    contact->check_initial_configuration(state, 0);
+    out.contact = contact.get();
+    out.contact_forces.emplace(
+        directory + "/contact_forces.csv",
+        std::vector<std::string>{"step", "time", "obstacle", "fx", "fy", "fz",
+                                 "mx", "my", "mz", "active_pairs",
+                                 "min_distance", "work", "ux", "uy", "uz"});
+    return contact;
+  }
+
+  void Scene::run_stage(const Stage             &stage,
+                        const model::ShellModel &model,
+                        model::ShellState       &state,
+                        double                   start_time,
+                        StagedOutput            &out,
+                        io::LevelResult         &result,
+                        const std::string       &directory,
+                        std::ostream            &log)
+  {
+    auto phase = std::chrono::steady_clock::now();
+    if (stages_.staged())
+      log << stage.name() << ", t = " << start_time << " .. "
+          << start_time + stage.duration << " s\n";
+    const bool dynamic       = stage.analysis == "dynamic";
+    auto       contributions = static_contributions(
+              model, loads_, element_.formulation, path_following_.tangent(),
+              path_following_.extrapolated_geometric_stiffness(dynamic),
+              path_following_.exact_tangent_after_failure(), log);
+    if (dynamic)
+      contributions.push_back(std::make_unique<model::Inertia>(
+          model, inertia_, time_integration_.se3()));
+    if (out.contact)
+      contributions.push_back(
+          std::make_unique<contact::ContactContribution>(*out.contact));
+    model::ShellProblem problem(model, state, stage_constraints(model, stage),
+                                std::move(contributions),
+                                motions_.increments(model, stage.motions));
+    problem.set_schedule({start_time, stage.duration, stage.load_factor});
+    problem.set_correction_limits(correction_limits_);
+    linear_solver_.check_applicable(non_symmetric_reason(problem));
+    if (restart_ && restart_->stage == stage.number)
+      problem.set_converged_force_scale(restart_->converged_force_scale);
+    result.wall_time_s.setup += seconds_since(phase);
+    phase = std::chrono::steady_clock::now();
+    if (dynamic)
+    {
+      DynamicStageRun run(stage, problem, start_time, out, result, directory,
+                          log);
+      run_dynamic_stage(run);
+    }
+    else
+      run_static_stage(stage, problem, out, result, directory, log);
+    result.wall_time_s.solve += seconds_since(phase);
+  }
+
+  void Scene::finish_staged_outputs(const model::ShellModel &model,
+                                    const model::ShellState &state,
+                                    double                   end_time,
+                                    StagedOutput            &out,
+                                    io::LevelResult         &result,
+                                    const std::string       &directory)
+  {
+    const auto phase = std::chrono::steady_clock::now();
+    if (out.last_written != out.step)
+      write_step(model, state, out, directory, out.step, end_time);
     out.curve.finish();
     out.history.finish();
     if (out.contact_forces)
     {
       out.contact_forces->finish();
-      const auto &timing = contact->timing();
-      result.contact     = {{"smallest_gap", out.smallest_gap},
-                            {"largest_penetration", out.largest_penetration},
-                            {"barrier_stiffness", contact->barrier_stiffness()},
-                            {"activation_distance", contact->activation_distance()},
-                            {"detection_s", timing.detection},
-                            {"pair_terms_s", timing.pair_terms},
-                            {"collision_filter_s", timing.filter},
-                            {"tree_build_s", timing.tree_build}};
+      const auto &timing = out.contact->timing();
+      result.contact     = {
+              {"smallest_gap", out.smallest_gap},
+              {"largest_penetration", out.largest_penetration},
+              {"barrier_stiffness", out.contact->barrier_stiffness()},
+              {"activation_distance", out.contact->activation_distance()},
+              {"detection_s", timing.detection},
+              {"pair_terms_s", timing.pair_terms},
+              {"collision_filter_s", timing.filter},
+              {"tree_build_s", timing.tree_build}};
     }
     if (out.time_history)
       out.time_history->finish();
     if (!quantities_.reference_curves().empty())
       write_reference_points(quantities_, directory);
     result.wall_time_s.output = seconds_since(phase);
-    return result;
   }
 
   io::Json Scene::run(const std::string &output_directory, std::ostream &log)

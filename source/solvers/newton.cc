@@ -279,106 +279,140 @@ namespace coshell::solvers
     return false;
   }
 
+  /// What a solve carries from one iteration to the next.
+  struct Newton::Iterate
+  {
+    Iterate(NonlinearProblem &problem, double residual_tolerance)
+        : residual(problem.sparsity().n_rows()),
+          trial_residual(residual.size()), step_increment(residual.size()),
+          prediction(residual_tolerance)
+    {
+      problem.reinit_tangent(tangent);
+    }
+
+    TangentMatrix  tangent;
+    Vector<double> residual, trial_residual;
+    /// The sum of the corrections applied in this solve.
+    Vector<double> step_increment;
+    /// The energy |du.r| of the first correction, the yardstick of the
+    /// energy tolerance.
+    double           first_energy     = 0;
+    bool             correction_small = false;
+    CorrectionRecord corrections;
+    /// Corrections that climbed the energy.
+    unsigned int          climbs = 0;
+    ConvergencePrediction prediction;
+    /// The last correction was applied whole (no filter, no line search).
+    bool whole_correction = false;
+    /// The line search's accepted trial was kept: it evaluated the iterate.
+    bool evaluated = false;
+  };
+
   unsigned int Newton::solve(NonlinearProblem &problem,
                              const Observer   &observer) const
   {
     problem.begin_solve();
-    TangentMatrix tangent;
-    problem.reinit_tangent(tangent);
-    Vector<double>        residual(problem.sparsity().n_rows());
-    Vector<double>        trial_residual(residual.size());
-    Vector<double>        step_increment(residual.size());
-    double                first_energy     = 0;
-    bool                  correction_small = false;
-    CorrectionRecord      corrections;
-    unsigned int          climbs = 0; // corrections that climbed the energy
-    ConvergencePrediction prediction(parameters_.residual_tolerance);
-    bool                  whole_correction = false;
-    // The line search's accepted trial was kept: it evaluated the iterate.
-    bool evaluated = false;
+    Iterate it(problem, parameters_.residual_tolerance);
     for (unsigned int iteration = 0;; ++iteration)
     {
       const bool last_expected =
-          correction_small || prediction.expects_convergence(whole_correction);
-      if (!evaluated)
-        problem.evaluate(residual, last_expected ? nullptr : &tangent);
-      evaluated = false;
-      const double relative_residual =
-          residual.l2_norm() / std::max(problem.force_scale(), 1e-300);
-      prediction.add(relative_residual, whole_correction);
+          it.correction_small ||
+          it.prediction.expects_convergence(it.whole_correction);
+      if (!it.evaluated)
+        problem.evaluate(it.residual, last_expected ? nullptr : &it.tangent);
+      it.evaluated                   = false;
+      const double relative_residual = judge_residual(problem, it);
       // While a prescribed increment is pending the residual holds its
       // effect on the free unknowns, which no force measures yet.
       const bool pending = problem.prescribed_increment_pending();
-      if (!std::isfinite(residual.l2_norm()) ||
-          (!pending && relative_residual > parameters_.divergence_limit))
-        throw NewtonFailure("Newton diverged (relative residual " +
-                            short_number(relative_residual) + ")" +
-                            problem.failure_context());
       // Converged when the residual is small, or when the last correction
       // has dropped to round-off in both norm and energy: very stiff
       // membranes leave a round-off floor in the residual.
       if (!pending && (relative_residual <= parameters_.residual_tolerance ||
-                       correction_small))
+                       it.correction_small))
       {
         if (observer)
           observer({iteration, relative_residual, 0, 0});
         return iteration;
       }
       if (last_expected)
-        problem.evaluate(residual, &tangent); // it was not the last after all
+        problem.evaluate(it.residual, &it.tangent); // not the last after all
       if (iteration == parameters_.max_iterations)
         throw NewtonFailure("Newton did not converge in " +
                             std::to_string(parameters_.max_iterations) +
                             " iterations (relative residual " +
                             short_number(relative_residual) +
-                            corrections.summary() + ")" +
+                            it.corrections.summary() + ")" +
                             (pending ? "; " + pending_move_note : "") +
                             problem.failure_context());
-      Vector<double> du = correction(problem, tangent, residual);
-      // The energy slope along du; negative: du climbs the energy.
-      const double slope = du * residual;
-      climbs += slope < 0;
-      if (slope < 0 && climbs >= parameters_.climbs_before_convex_tangent &&
-          problem.use_convex_tangent())
-        continue; // same iterate, a tangent whose correction descends
-      const double energy = std::abs(slope);
-      if (first_energy == 0)
-        first_energy = std::max(energy, 1e-300);
-      const bool direction_small =
-          parameters_.correction_tolerance > 0 &&
-          du.linfty_norm() <= parameters_.correction_tolerance;
-      // The step filter comes first, so that the line search only tries
-      // admissible (e.g. collision-free) configurations.
-      const double fraction = problem.admissible_fraction(du);
-      if (fraction < 1)
-        du *= fraction;
-      LineSearch search;
-      if (parameters_.line_search)
-      {
-        // The first trial's tangent, as the next evaluation's.
-        const bool trial_tangent =
-            !direction_small && !prediction.expects_convergence(fraction == 1);
-        search = line_search(problem, residual, du, trial_residual,
-                             trial_tangent ? &tangent : nullptr);
-        du *= search.scale;
-      }
-      corrections.add(search.scale <= smallest_line_search_scale, slope < 0);
-      whole_correction = fraction == 1 && search.scale == 1;
-      step_increment += du;
-      correction_small =
-          direction_small ||
-          (energy <= parameters_.energy_tolerance * first_energy &&
-           du.l2_norm() <= parameters_.increment_tolerance *
-                               std::max(step_increment.l2_norm(), 1e-300));
-      const bool next_with_tangent =
-          !correction_small &&
-          !prediction.expects_convergence(whole_correction);
-      evaluated = apply_correction(problem, search, next_with_tangent, du,
-                                   residual, trial_residual);
-      if (observer)
-        observer({iteration, relative_residual, du.l2_norm(),
-                  energy / first_energy});
+      correct(problem, it, iteration, relative_residual, observer);
     }
+  }
+
+  double Newton::judge_residual(NonlinearProblem &problem, Iterate &it) const
+  {
+    const double relative_residual =
+        it.residual.l2_norm() / std::max(problem.force_scale(), 1e-300);
+    it.prediction.add(relative_residual, it.whole_correction);
+    if (!std::isfinite(it.residual.l2_norm()) ||
+        (!problem.prescribed_increment_pending() &&
+         relative_residual > parameters_.divergence_limit))
+      throw NewtonFailure("Newton diverged (relative residual " +
+                          short_number(relative_residual) + ")" +
+                          problem.failure_context());
+    return relative_residual;
+  }
+
+  void Newton::correct(NonlinearProblem &problem,
+                       Iterate          &it,
+                       unsigned int      iteration,
+                       double            relative_residual,
+                       const Observer   &observer) const
+  {
+    Vector<double> du = correction(problem, it.tangent, it.residual);
+    // The energy slope along du; negative: du climbs the energy.
+    const double slope = du * it.residual;
+    it.climbs += slope < 0;
+    if (slope < 0 && it.climbs >= parameters_.climbs_before_convex_tangent &&
+        problem.use_convex_tangent())
+      return; // same iterate, a tangent whose correction descends
+    const double energy = std::abs(slope);
+    if (it.first_energy == 0)
+      it.first_energy = std::max(energy, 1e-300);
+    const bool direction_small =
+        parameters_.correction_tolerance > 0 &&
+        du.linfty_norm() <= parameters_.correction_tolerance;
+    // The step filter comes first, so that the line search only tries
+    // admissible (e.g. collision-free) configurations.
+    const double fraction = problem.admissible_fraction(du);
+    if (fraction < 1)
+      du *= fraction;
+    LineSearch search;
+    if (parameters_.line_search)
+    {
+      // The first trial's tangent, as the next evaluation's.
+      const bool trial_tangent =
+          !direction_small && !it.prediction.expects_convergence(fraction == 1);
+      search = line_search(problem, it.residual, du, it.trial_residual,
+                           trial_tangent ? &it.tangent : nullptr);
+      du *= search.scale;
+    }
+    it.corrections.add(search.scale <= smallest_line_search_scale, slope < 0);
+    it.whole_correction = fraction == 1 && search.scale == 1;
+    it.step_increment += du;
+    it.correction_small =
+        direction_small ||
+        (energy <= parameters_.energy_tolerance * it.first_energy &&
+         du.l2_norm() <= parameters_.increment_tolerance *
+                             std::max(it.step_increment.l2_norm(), 1e-300));
+    const bool next_with_tangent =
+        !it.correction_small &&
+        !it.prediction.expects_convergence(it.whole_correction);
+    it.evaluated = apply_correction(problem, search, next_with_tangent, du,
+                                    it.residual, it.trial_residual);
+    if (observer)
+      observer({iteration, relative_residual, du.l2_norm(),
+                energy / it.first_energy});
   }
 
   double Newton::single_correction(NonlinearProblem &problem,

@@ -204,6 +204,37 @@ namespace coshell::solvers
     }
   }
 
+  namespace
+  {
+    /// The load increment dl with |base + dl * from_load| = arc whose step
+    /// is closest in direction to the current 'step' (of the two roots);
+    /// throws NewtonFailure when there is no real root.
+    double closest_arc_root(const Vector<double> &base,
+                            const Vector<double> &from_load,
+                            const Vector<double> &step,
+                            double                arc)
+    {
+      const double a = from_load * from_load, b = 2 * (from_load * base),
+                   q            = base * base - arc * arc;
+      const double discriminant = b * b - 4 * a * q;
+      if (discriminant < 0)
+        throw NewtonFailure("arc-length constraint has no real root");
+      double best_dl = 0, best_alignment = -1e300;
+      for (const double root : {(-b + std::sqrt(discriminant)) / (2 * a),
+                                (-b - std::sqrt(discriminant)) / (2 * a)})
+      {
+        Vector<double> candidate = base;
+        candidate.add(root, from_load);
+        if (candidate * step > best_alignment)
+        {
+          best_alignment = candidate * step;
+          best_dl        = root;
+        }
+      }
+      return best_dl;
+    }
+  } // namespace
+
   /// One arc-length step of radius 'arc' (Crisfield 1981, cylindrical:
   /// |du_step| = arc, the parameter free). The predictor follows the
   /// tangent in the direction of the previous step; each corrector solves
@@ -256,24 +287,7 @@ namespace coshell::solvers
       const Vector<double> from_load     = run.solve(load);
       Vector<double>       base          = step;
       base += from_residual;
-      // |base + dl * from_load|^2 = arc^2
-      const double a = from_load * from_load, b = 2 * (from_load * base),
-                   q            = base * base - arc * arc;
-      const double discriminant = b * b - 4 * a * q;
-      if (discriminant < 0)
-        throw NewtonFailure("arc-length constraint has no real root");
-      double best_dl = 0, best_alignment = -1e300;
-      for (const double root : {(-b + std::sqrt(discriminant)) / (2 * a),
-                                (-b - std::sqrt(discriminant)) / (2 * a)})
-      {
-        Vector<double> candidate = base;
-        candidate.add(root, from_load);
-        if (candidate * step > best_alignment)
-        {
-          best_alignment = candidate * step;
-          best_dl        = root;
-        }
-      }
+      const double   best_dl    = closest_arc_root(base, from_load, step, arc);
       Vector<double> correction = from_residual;
       correction.add(best_dl, from_load);
       problem.apply_increment(correction);
@@ -324,7 +338,8 @@ namespace coshell::solvers
                           const IterationObserver   &on_iteration,
                           std::ostream              &log) const
   {
-    Run run{problem, linear_solver, stops, on_step, on_iteration, log};
+    Run run{problem, linear_solver, stops, on_step, on_iteration, log, 0, 0,
+            {}};
     problem.save();
     if (arc_length())
       arc_length_path(run);

@@ -192,6 +192,80 @@ namespace coshell::solvers
       TimeIntegration::Scheme &scheme_;
       Vector<double>           q_;
     };
+
+    /// Sets the predictor's increment q as the step's start. The predictor
+    /// is a step like any other: the collision filter scales it. It
+    /// certifies the straight path to the predicted position, so a scaled
+    /// SE(3) step is set as a straight one.
+    void set_filtered_prediction(EvolutionProblem     &problem,
+                                 const Vector<double> &q,
+                                 Vector<double>       &displacement)
+    {
+      problem.step_displacement(q, displacement);
+      const double admissible = problem.admissible_fraction(displacement);
+      if (admissible < 1)
+      {
+        displacement *= admissible;
+        problem.set_step_displacement(displacement);
+      }
+      else
+        problem.set_step_increment(q);
+    }
+
+    /// Solves the step's nonlinear problem: one correction (linearized)
+    /// or Newton, whose converged step 'check' may reject. Returns the
+    /// iterations; throws NewtonFailure.
+    unsigned int solve_step(const Newton                     &newton,
+                            StepProblem                      &step_problem,
+                            bool                              linearized,
+                            const Newton::Observer           &observe,
+                            const TimeIntegration::StepCheck &check,
+                            TimeIntegration::StepRecord       record)
+    {
+      if (linearized)
+      {
+        newton.single_correction(step_problem, observe);
+        return 1;
+      }
+      record.iterations = newton.solve(step_problem, observe);
+      // The linearized step evaluates no forces at its end, so its work
+      // is unknown there: the guard judges Newton's steps only.
+      if (check)
+        if (const std::string reason = check(record); !reason.empty())
+          throw NewtonFailure(reason);
+      return record.iterations;
+    }
+
+    /// The log's progress line, at most every 'interval' s of wall time.
+    class ProgressLog
+    {
+    public:
+      ProgressLog(double interval, double start_time)
+          : interval_(interval), start_time_(start_time)
+      {
+      }
+      void after_step(std::ostream &log,
+                      unsigned int  step,
+                      double        t,
+                      double        h,
+                      unsigned int  iterations)
+      {
+        const auto now = std::chrono::steady_clock::now();
+        if (std::chrono::duration<double>(now - last_).count() < interval_)
+          return;
+        const double wall = std::chrono::duration<double>(now - start_).count();
+        log << "  step " << step << ", t = " << t << " s, dt = " << h << " s, "
+            << iterations << " iterations, real-time factor "
+            << (t - start_time_) / std::max(wall, 1e-9) << '\n';
+        last_ = now;
+      }
+
+    private:
+      double interval_, start_time_;
+      std::chrono::steady_clock::time_point
+          start_ = std::chrono::steady_clock::now(),
+          last_  = start_;
+    };
   } // namespace
 
   void TimeIntegration::declare_parameters(ParameterHandler &prm)
@@ -354,10 +428,9 @@ namespace coshell::solvers
     else if (!scheme.euler)
       initial_acceleration(problem, linear_solver);
     problem.save();
-    const auto     wall_start    = std::chrono::steady_clock::now();
-    auto           last_progress = wall_start;
-    double         t             = start;
-    unsigned int   step          = first_step;
+    ProgressLog    progress(progress_interval_, start);
+    double         t    = start;
+    unsigned int   step = first_step;
     Vector<double> q(problem.sparsity().n_rows()), displacement;
     while (t < end - 1e-12 * std::max(1.0, std::abs(end)))
     {
@@ -369,18 +442,7 @@ namespace coshell::solvers
       problem.set_rate_coefficients(scheme.acceleration_coefficient(),
                                     scheme.velocity_coefficient());
       scheme.predictor(q);
-      // The predictor is a step like any other: the collision filter
-      // scales it. It certifies the straight path to the predicted
-      // position, so a scaled SE(3) step is set as a straight one.
-      problem.step_displacement(q, displacement);
-      const double admissible = problem.admissible_fraction(displacement);
-      if (admissible < 1)
-      {
-        displacement *= admissible;
-        problem.set_step_displacement(displacement);
-      }
-      else
-        problem.set_step_increment(q);
+      set_filtered_prediction(problem, q, displacement);
       step_problem.update_rates();
       const auto observe = [&](const NewtonIteration &record)
       {
@@ -390,16 +452,8 @@ namespace coshell::solvers
       try
       {
         const unsigned int iterations =
-            scheme.linearized
-                ? (newton.single_correction(step_problem, observe), 1u)
-                : newton.solve(step_problem, observe);
-        // The linearized step evaluates no forces at its end, so its work
-        // is unknown there: the guard judges Newton's steps only.
-        if (step_check && !scheme.linearized)
-          if (const std::string reason =
-                  step_check({step + 1, t + h, h, iterations});
-              !reason.empty())
-            throw NewtonFailure(reason);
+            solve_step(newton, step_problem, scheme.linearized, observe,
+                       step_check, {step + 1, t + h, h, 0});
         scheme.accept();
         t += h;
         ++step;
@@ -409,17 +463,7 @@ namespace coshell::solvers
         // Before save(): the observer measures the step increment (work).
         on_step({step, t, h, iterations});
         problem.save();
-        const auto   now = std::chrono::steady_clock::now();
-        const double wall =
-            std::chrono::duration<double>(now - wall_start).count();
-        if (std::chrono::duration<double>(now - last_progress).count() >=
-            progress_interval_)
-        {
-          log << "  step " << step << ", t = " << t << " s, dt = " << h
-              << " s, " << iterations << " iterations, real-time factor "
-              << (t - start) / std::max(wall, 1e-9) << '\n';
-          last_progress = now;
-        }
+        progress.after_step(log, step, t, h, iterations);
       }
       catch (const NewtonFailure &failure)
       {

@@ -25,6 +25,7 @@
 #include <functional>
 #include <istream>
 #include <map>
+#include <memory>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -118,6 +119,30 @@ namespace coshell::driver
                                const std::string       &directory,
                                std::ostream            &log);
     struct StagedOutput;
+    /// The contact of the run (nothing when Contact is off), checked
+    /// against the initial configuration, and its contact_forces.csv.
+    std::unique_ptr<contact::Contact>
+    start_contact(const model::ShellModel &model,
+                  const model::ShellState &state,
+                  StagedOutput            &out,
+                  const std::string       &directory) const;
+    /// Builds the stage's problem on 'state' and runs it.
+    void run_stage(const Stage             &stage,
+                   const model::ShellModel &model,
+                   model::ShellState       &state,
+                   double                   start_time,
+                   StagedOutput            &out,
+                   io::LevelResult         &result,
+                   const std::string       &directory,
+                   std::ostream            &log);
+    /// The last step's VTU if not written yet, the CSV files closed, and
+    /// the contact's extremes and timings in the level's result.
+    void finish_staged_outputs(const model::ShellModel &model,
+                               const model::ShellState &state,
+                               double                   end_time,
+                               StagedOutput            &out,
+                               io::LevelResult         &result,
+                               const std::string       &directory);
     /// Writes the step's VTU (with the contact fields and the obstacles).
     void write_step(const model::ShellModel &model,
                     const model::ShellState &state,
@@ -153,14 +178,19 @@ namespace coshell::driver
                                  io::LevelResult     &result,
                                  const std::string   &directory,
                                  std::ostream        &log);
-    void        run_dynamic_stage(const Stage         &stage,
-                                  model::ShellProblem &problem,
-                                  double               start_time,
-                                  StagedOutput        &out,
-                                  io::LevelResult     &result,
-                                  const std::string   &directory,
-                                  std::ostream        &log);
-    bool        has_dynamic_stage() const;
+    struct DynamicStageRun;
+    void run_dynamic_stage(DynamicStageRun &run);
+    /// The dynamic stage's parts: the forces at its start (or the
+    /// restart's) and its energy guard; the work, dissipation and kinetic
+    /// measures of a converged step; the step's rows, files, checkpoint
+    /// and reply; and the pending row and totals at its end.
+    void                   begin_dynamic_stage(DynamicStageRun &run);
+    model::KineticMeasures account_step_energies(DynamicStageRun &run);
+    void
+         record_dynamic_step(DynamicStageRun                            &run,
+                             const solvers::TimeIntegration::StepRecord &record);
+    void finish_dynamic_stage(DynamicStageRun &run, double reached);
+    bool has_dynamic_stage() const;
     /// Checkpointing (scene_checkpoint.cc): the earlier run's CSV rows
     /// up to the restart's step (curve, Newton history, time history), read
     /// before this run overwrites those files; the restored state and

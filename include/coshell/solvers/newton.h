@@ -106,6 +106,18 @@ namespace coshell::solvers
                                 dealii::Vector<double> &du,
                                 dealii::Vector<double> &residual,
                                 dealii::Vector<double> &trial_residual) const;
+    /// What a solve carries from one iteration to the next (newton.cc).
+    struct Iterate;
+    /// The residual's norm relative to the force scale, fed to the
+    /// convergence prediction; throws when it is not finite or diverged.
+    double judge_residual(NonlinearProblem &problem, Iterate &it) const;
+    /// One correction: solve, step filter, line search, convergence
+    /// measures, and the corrected iterate (evaluated if a trial was kept).
+    void correct(NonlinearProblem &problem,
+                 Iterate          &it,
+                 unsigned int      iteration,
+                 double            relative_residual,
+                 const Observer   &observer) const;
   };
 
   /// Step-size policy shared by load stepping, arc length and time
