@@ -92,6 +92,7 @@ namespace
       return c;
     }
   };
+
   /// Reads the parameters and runs the scene the command line names
   /// (or prints the parameters); throws on bad input or a failed solve.
   int run_scene(const CommandLine &line)

@@ -320,7 +320,8 @@ namespace coshell::solvers
           it.prediction.expects_convergence(it.whole_correction);
       if (!it.evaluated)
         problem.evaluate(it.residual, last_expected ? nullptr : &it.tangent);
-      it.evaluated                   = false;
+      it.evaluated = false;
+      // Throws when the residual is not finite or has diverged.
       const double relative_residual = judge_residual(problem, it);
       // While a prescribed increment is pending the residual holds its
       // effect on the free unknowns, which no force measures yet.

@@ -212,6 +212,23 @@ namespace coshell::solvers
         problem.set_step_increment(q);
     }
 
+    /// Starts the step of size h to 'time': the scheme's coefficients and
+    /// its predictor, filtered, as the step's first increment.
+    void start_step(EvolutionProblem        &problem,
+                    TimeIntegration::Scheme &scheme,
+                    double                   time,
+                    double                   h,
+                    Vector<double>          &q,
+                    Vector<double>          &displacement)
+    {
+      scheme.start(h, problem.velocity(), problem.acceleration());
+      problem.set_time(time);
+      problem.set_rate_coefficients(scheme.acceleration_coefficient(),
+                                    scheme.velocity_coefficient());
+      scheme.predictor(q);
+      set_filtered_prediction(problem, q, displacement);
+    }
+
     /// Solves the step's nonlinear problem: one correction (linearized)
     /// or Newton, whose converged step 'check' may reject. Returns the
     /// iterations; throws NewtonFailure.
@@ -240,8 +257,8 @@ namespace coshell::solvers
     class ProgressLog
     {
     public:
-      ProgressLog(double interval, double start_time)
-          : interval_(interval), start_time_(start_time)
+      ProgressLog(double interval, double simulated_start)
+          : interval_(interval), simulated_start_(simulated_start)
       {
       }
       void after_step(std::ostream &log,
@@ -253,18 +270,19 @@ namespace coshell::solvers
         const auto now = std::chrono::steady_clock::now();
         if (std::chrono::duration<double>(now - last_).count() < interval_)
           return;
-        const double wall = std::chrono::duration<double>(now - start_).count();
+        const double wall =
+            std::chrono::duration<double>(now - wall_start_).count();
         log << "  step " << step << ", t = " << t << " s, dt = " << h << " s, "
             << iterations << " iterations, real-time factor "
-            << (t - start_time_) / std::max(wall, 1e-9) << '\n';
+            << (t - simulated_start_) / std::max(wall, 1e-9) << '\n';
         last_ = now;
       }
 
     private:
-      double interval_, start_time_;
+      double interval_, simulated_start_;
       std::chrono::steady_clock::time_point
-          start_ = std::chrono::steady_clock::now(),
-          last_  = start_;
+          wall_start_ = std::chrono::steady_clock::now(),
+          last_       = wall_start_;
     };
   } // namespace
 
@@ -437,12 +455,7 @@ namespace coshell::solvers
       double h = std::min(control.size(), end - t);
       if (end - t - h < 0.01 * h) // no sliver of a last step
         h = end - t;
-      scheme.start(h, problem.velocity(), problem.acceleration());
-      problem.set_time(t + h);
-      problem.set_rate_coefficients(scheme.acceleration_coefficient(),
-                                    scheme.velocity_coefficient());
-      scheme.predictor(q);
-      set_filtered_prediction(problem, q, displacement);
+      start_step(problem, scheme, t + h, h, q, displacement);
       step_problem.update_rates();
       const auto observe = [&](const NewtonIteration &record)
       {

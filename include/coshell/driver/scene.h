@@ -179,13 +179,15 @@ namespace coshell::driver
                                  const std::string   &directory,
                                  std::ostream        &log);
     struct DynamicStageRun;
+    /// Integrates a dynamic stage (or, interactively, up to each target),
+    /// with its time history, contact rows, VTU, checkpoints and replies.
     void run_dynamic_stage(DynamicStageRun &run);
     /// The dynamic stage's parts: the forces at its start (or the
     /// restart's) and its energy guard; the work, dissipation and kinetic
     /// measures of a converged step; the step's rows, files, checkpoint
     /// and reply; and the pending row and totals at its end.
-    void                   begin_dynamic_stage(DynamicStageRun &run);
-    model::KineticMeasures account_step_energies(DynamicStageRun &run);
+    void                          begin_dynamic_stage(DynamicStageRun &run);
+    static model::KineticMeasures account_step_energies(DynamicStageRun &run);
     void
          record_dynamic_step(DynamicStageRun                            &run,
                              const solvers::TimeIntegration::StepRecord &record);

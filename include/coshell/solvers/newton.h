@@ -113,6 +113,9 @@ namespace coshell::solvers
     double judge_residual(NonlinearProblem &problem, Iterate &it) const;
     /// One correction: solve, step filter, line search, convergence
     /// measures, and the corrected iterate (evaluated if a trial was kept).
+    /// A correction that climbs the energy once too often is dropped
+    /// instead, unapplied and unobserved, when the problem can switch to
+    /// its convex tangent: the next iteration corrects the same iterate.
     void correct(NonlinearProblem &problem,
                  Iterate          &it,
                  unsigned int      iteration,
