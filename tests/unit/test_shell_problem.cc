@@ -196,6 +196,8 @@ TEST(InternalForce, AFailedStepLeavesTheStageOnTheExactTangent)
     EXPECT_EQ(difference(exact_tangent, automatic.step(size)), 0);
     const auto tangent = extrapolated.step(size);
     if (size == 0.001) // the second configuration: extrapolated
+    {
       EXPECT_GT(difference(exact_tangent, tangent), 1e-10);
+    }
   }
 }
