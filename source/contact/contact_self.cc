@@ -105,14 +105,6 @@ namespace coshell::contact
     return sum / 4; // the mean of the two edges' half thicknesses, summed
   }
 
-  bool Contact::self_edge_pair_allowed(unsigned int e, unsigned int f) const
-  {
-    // Edges sharing a vertex are within zero of each other: never a pair
-    // (also excluded by the reference distance, which is zero).
-    return !std::binary_search(excluded_edges_[e].begin(),
-                               excluded_edges_[e].end(), f);
-  }
-
   double Contact::self_reach(unsigned int v, double activation) const
   {
     return 0.5 * (model_.vertex_thickness(v) + largest_thickness_) + activation;
@@ -128,12 +120,6 @@ namespace coshell::contact
   double Contact::self_offset(unsigned int v, unsigned int t) const
   {
     return 0.5 * (model_.vertex_thickness(v) + shell_triangle_thickness_[t]);
-  }
-
-  bool Contact::self_pair_allowed(unsigned int v, unsigned int t) const
-  {
-    // A triangle's own corners are within zero of it: always excluded.
-    return !std::binary_search(excluded_[v].begin(), excluded_[v].end(), t);
   }
 
   const std::vector<Point<3>> &Contact::other_side(const Pair &pair) const

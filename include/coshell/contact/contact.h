@@ -503,10 +503,8 @@ namespace coshell::contact
                std::initializer_list<dealii::Point<3>>     corners,
                double                                      inflation,
                std::vector<unsigned int>                  &edges);
-    /// Self contact of edges e and f: the mean of their half thicknesses,
-    /// and whether they may pair (no shared vertex, not excluded).
+    /// Self contact of edges e and f: the mean of their half thicknesses.
     double self_edge_offset(unsigned int e, unsigned int f) const;
-    bool   self_edge_pair_allowed(unsigned int e, unsigned int f) const;
     /// Edge pairs of the same connected piece nearer than the exclusion
     /// distance in the reference configuration (after the vertex ones).
     void exclude_reference_edge_neighbours(
@@ -534,11 +532,6 @@ namespace coshell::contact
     /// triangle (edge), plus 'activation': how far its search reaches.
     double self_reach(unsigned int v, double activation) const;
     double self_edge_reach(unsigned int e, double activation) const;
-    /// Whether v and t may form a self-contact pair: v is not a corner of
-    /// t, and they are on different connected pieces or were at least
-    /// Self contact exclusion times their offset apart in the reference
-    /// configuration (excluded_).
-    bool self_pair_allowed(unsigned int v, unsigned int t) const;
     /// Finds, once, the triangles each shell vertex must not pair with
     /// beyond its own: those of its connected piece that were nearer
     /// than the exclusion distance in the reference configuration.
@@ -554,7 +547,10 @@ namespace coshell::contact
     /// the last evaluation (diagnostics).
     std::map<unsigned int, std::map<unsigned int, double>>
     obstacle_gaps_by_vertex() const;
-    /// Per shell vertex, the sorted triangles it does not pair with.
+    /// Per shell vertex, the sorted triangles it does not pair with: its
+    /// own (v is their corner) and those of its connected piece that were
+    /// nearer than Self contact exclusion times their offset in the
+    /// reference configuration.
     std::vector<std::vector<unsigned int>> excluded_;
     unsigned int                           self_active_pairs_ = 0;
     double                                 reach(unsigned int obstacle) const;
