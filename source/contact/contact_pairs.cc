@@ -391,14 +391,11 @@ namespace coshell::contact
 {
   using namespace dealii;
 
-  /// Energy w phi(g) of a pair, g = |d| - offset, w = stiffness * area:
-  /// its gradient and Hessian by the chain rule through d = sqrt(s),
-  /// dg = ds / (2d), d2g = d2s / (2d) - ds ds^T / (4 d^3).
-  void Contact::add_pair_terms(const model::ShellState & /*state*/,
-                               const model::BlockSink &sink,
-                               bool                    with_tangent)
+  /// Zeroes what add_pair_terms() sums over the pairs: the loads on the
+  /// obstacles, the potential, forces and gaps, and the normal forces
+  /// friction takes from this evaluation.
+  void Contact::reset_pair_records()
   {
-    const auto start = std::chrono::steady_clock::now();
     for (auto &load : loads_)
       load = ObstacleLoad();
     self_active_pairs_ = 0;
@@ -413,8 +410,19 @@ namespace coshell::contact
       force = 0;
     std::fill(vertex_gap_.begin(), vertex_gap_.end(),
               std::numeric_limits<double>::infinity());
-    model::DofBlock block;
     normal_forces_.clear();
+  }
+
+  /// Energy w phi(g) of a pair, g = |d| - offset, w = stiffness * area:
+  /// its gradient and Hessian by the chain rule through d = sqrt(s),
+  /// dg = ds / (2d), d2g = d2s / (2d) - ds ds^T / (4 d^3).
+  void Contact::add_pair_terms(const model::ShellState & /*state*/,
+                               const model::BlockSink &sink,
+                               bool                    with_tangent)
+  {
+    const auto start = std::chrono::steady_clock::now();
+    reset_pair_records();
+    model::DofBlock block;
     for (const Pair &pair : pairs_)
     {
       const auto   points   = pair_points(pair, positions_, other_side(pair));

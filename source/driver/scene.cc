@@ -110,6 +110,68 @@ namespace coshell::driver
       apply_override(prm, assignment);
   }
 
+  namespace
+  {
+    void declare_modal_analysis_entries(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Modal analysis");
+      prm.declare_entry("Number of modes", "6", Patterns::Integer(1),
+                        "Analysis/Type = modes: how many of the lowest natural "
+                        "frequencies to compute (dimensionless).");
+      prm.declare_entry("Shift", "0", Patterns::Double(),
+                        "sigma of the shift-invert Lanczos iteration, in 1/s^2 "
+                        "(omega^2 units): the modes nearest it are found. A "
+                        "negative value lets an unsupported structure (with "
+                        "rigid-body modes) be analysed.");
+      prm.leave_subsection();
+    }
+
+    void declare_analysis_entries(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Analysis");
+      prm.declare_entry(
+          "Type", "linear static",
+          Patterns::Selection("linear static|nonlinear static|dynamic|modes"),
+          "linear static: one linear solve (Element/Formulation = linear); "
+          "nonlinear static: the equilibrium path by Newton (subsection "
+          "Nonlinear solver), with linear or co-rotational kinematics; "
+          "dynamic: implicit time integration (subsections Time "
+          "integration, Mass and damping); modes: the lowest natural "
+          "frequencies and mode shapes of the undeformed shell (subsection "
+          "Modal analysis; modes.csv). Stages (subsections Stage k) "
+          "give each stage its own type instead.");
+      prm.leave_subsection();
+    }
+
+    /// The scene's own Output entries (VtuOutput declares the rest).
+    void declare_output_entries(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Output");
+      prm.declare_entry(
+          "Checkpoint interval", "0", Patterns::Double(0),
+          "Dynamic stages: write checkpoint-NNNNNN.h5 (HDF5; NNNNNN the "
+          "step) to the output directory whenever the time passes a "
+          "multiple of this, in s of simulated time (0: never). "
+          "`coshell scene.prm --restart FILE` resumes from one. SIGINT and "
+          "SIGTERM write one at the end of the current step and stop with "
+          "status 3.");
+      prm.declare_entry(
+          "Steps between history rows", "1", Patterns::Integer(1),
+          "Dynamic stages: time_history.csv gets the rows of the steps whose "
+          "number (the step column, counted over all stages) is a multiple "
+          "of n, of each stage's last step and of the step where an "
+          "interactive run stops (a step count, dimensionless). Their "
+          "strain energy, largest strains and quantities of interest are "
+          "computed for those steps only; the work and the dissipation are "
+          "still summed over every step, so each row's energy balance holds "
+          "as with 1. A haptic loop that reads only the interactive replies "
+          "saves those passes over the elements (about 7 % of a linearized "
+          "step of the IOL push). Peaks between rows are not seen, and a "
+          "run that fails keeps the rows up to its last multiple of n.");
+      prm.leave_subsection();
+    }
+  } // namespace
+
   void Scene::declare_parameters(ParameterHandler &prm)
   {
     io::Constants::declare_parameters(prm);
@@ -124,55 +186,12 @@ namespace coshell::driver
     model::PrescribedMotions::declare_parameters(prm);
     model::InertiaParameters::declare_parameters(prm);
     contact::ContactParameters::declare_parameters(prm);
-    prm.enter_subsection("Modal analysis");
-    prm.declare_entry("Number of modes", "6", Patterns::Integer(1),
-                      "Analysis/Type = modes: how many of the lowest natural "
-                      "frequencies to compute (dimensionless).");
-    prm.declare_entry("Shift", "0", Patterns::Double(),
-                      "sigma of the shift-invert Lanczos iteration, in 1/s^2 "
-                      "(omega^2 units): the modes nearest it are found. A "
-                      "negative value lets an unsupported structure (with "
-                      "rigid-body modes) be analysed.");
-    prm.leave_subsection();
+    declare_modal_analysis_entries(prm);
     solvers::TimeIntegration::declare_parameters(prm);
     Stages::declare_parameters(prm);
-    prm.enter_subsection("Analysis");
-    prm.declare_entry(
-        "Type", "linear static",
-        Patterns::Selection("linear static|nonlinear static|dynamic|modes"),
-        "linear static: one linear solve (Element/Formulation = linear); "
-        "nonlinear static: the equilibrium path by Newton (subsection "
-        "Nonlinear solver), with linear or co-rotational kinematics; "
-        "dynamic: implicit time integration (subsections Time "
-        "integration, Mass and damping); modes: the lowest natural "
-        "frequencies and mode shapes of the undeformed shell (subsection "
-        "Modal analysis; modes.csv). Stages (subsections Stage k) "
-        "give each stage its own type instead.");
-    prm.leave_subsection();
+    declare_analysis_entries(prm);
     io::VtuOutput::declare_parameters(prm);
-    prm.enter_subsection("Output");
-    prm.declare_entry(
-        "Checkpoint interval", "0", Patterns::Double(0),
-        "Dynamic stages: write checkpoint-NNNNNN.h5 (HDF5; NNNNNN the "
-        "step) to the output directory whenever the time passes a "
-        "multiple of this, in s of simulated time (0: never). "
-        "`coshell scene.prm --restart FILE` resumes from one. SIGINT and "
-        "SIGTERM write one at the end of the current step and stop with "
-        "status 3.");
-    prm.declare_entry(
-        "Steps between history rows", "1", Patterns::Integer(1),
-        "Dynamic stages: time_history.csv gets the rows of the steps whose "
-        "number (the step column, counted over all stages) is a multiple "
-        "of n, of each stage's last step and of the step where an "
-        "interactive run stops (a step count, dimensionless). Their "
-        "strain energy, largest strains and quantities of interest are "
-        "computed for those steps only; the work and the dissipation are "
-        "still summed over every step, so each row's energy balance holds "
-        "as with 1. A haptic loop that reads only the interactive replies "
-        "saves those passes over the elements (about 7 % of a linearized "
-        "step of the IOL push). Peaks between rows are not seen, and a "
-        "run that fails keeps the rows up to its last multiple of n.");
-    prm.leave_subsection();
+    declare_output_entries(prm);
     solvers::ThreadSettings::declare_parameters(prm);
   }
 

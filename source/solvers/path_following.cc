@@ -7,6 +7,30 @@ namespace coshell::solvers
 {
   using namespace dealii;
 
+  namespace
+  {
+    /// How load-control and arc-length steps start, grow and are cut.
+    void declare_step_control_entries(ParameterHandler &prm)
+    {
+      prm.declare_entry("Load steps", "10", Patterns::Integer(1),
+                        "Initial number of equal increments of the path "
+                        "parameter from 0 to 1 (dimensionless; arc length: "
+                        "sets the first arc from the first increment).");
+      prm.declare_entry("Maximum step cuts", "12", Patterns::Integer(0),
+                        "How often in a row a failed step may be cut before "
+                        "the run stops with an error (dimensionless).");
+      prm.declare_entry("Easy step iterations", "6", Patterns::Integer(1),
+                        "A step that converged in at most this many Newton "
+                        "iterations lets the next one grow (dimensionless).");
+      prm.declare_entry("Step growth factor", "2", Patterns::Double(1),
+                        "Growth of the step after an easy one, up to the "
+                        "initial size (dimensionless).");
+      prm.declare_entry("Step cut factor", "0.5", Patterns::Double(0.01, 0.99),
+                        "A failed step is retried with this fraction of its "
+                        "size (dimensionless).");
+    }
+  } // namespace
+
   void PathFollowing::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Nonlinear solver");
@@ -45,22 +69,7 @@ namespace coshell::solvers
         "then current forces for the rest of the stage; current forces in "
         "dynamic ones (measured: doc/performance.md, \"Extrapolated "
         "forces in the geometric stiffness\").");
-    prm.declare_entry("Load steps", "10", Patterns::Integer(1),
-                      "Initial number of equal increments of the path "
-                      "parameter from 0 to 1 (dimensionless; arc length: "
-                      "sets the first arc from the first increment).");
-    prm.declare_entry("Maximum step cuts", "12", Patterns::Integer(0),
-                      "How often in a row a failed step may be cut before "
-                      "the run stops with an error (dimensionless).");
-    prm.declare_entry("Easy step iterations", "6", Patterns::Integer(1),
-                      "A step that converged in at most this many Newton "
-                      "iterations lets the next one grow (dimensionless).");
-    prm.declare_entry("Step growth factor", "2", Patterns::Double(1),
-                      "Growth of the step after an easy one, up to the "
-                      "initial size (dimensionless).");
-    prm.declare_entry("Step cut factor", "0.5", Patterns::Double(0.01, 0.99),
-                      "A failed step is retried with this fraction of its "
-                      "size (dimensionless).");
+    declare_step_control_entries(prm);
     NewtonParameters::declare_parameters(prm);
     prm.declare_entry("Maximum arc-length steps", "200", Patterns::Integer(1),
                       "Arc length: the run stops after this many steps "

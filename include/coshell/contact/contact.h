@@ -603,6 +603,7 @@ namespace coshell::contact
                        const Coordinates12                   &gradient,
                        double                                 gap,
                        const model::DofBlock                 &block);
+    void   reset_pair_records();
     /// The pairs within reach at x, from the candidate lists (made anew
     /// if they no longer cover x).
     void find_pairs(const std::vector<dealii::Point<3>> &x);
