@@ -33,9 +33,9 @@ namespace coshell::contact
     /// The items (triangles or edges) a self-contact search row must skip,
     /// marked with the row they belong to. Marking a row's sorted
     /// exclusion list once is cheaper than a binary search per hit: a
-    /// vertex's box of reach holds its own excluded neighbourhood, some
-    /// (t/h)^2 triangles, and on a 1 692-triangle lens those searches were
-    /// 5 % of a fold (doc/performance.md).
+    /// vertex's box of reach overlaps much of its own excluded
+    /// neighbourhood, some (t/h)^2 triangles, and on a 1 692-triangle lens
+    /// those searches were 5 % of a fold (doc/performance.md).
     class ExclusionMarks
     {
     public:

@@ -391,9 +391,10 @@ namespace coshell::contact
 {
   using namespace dealii;
 
-  /// Zeroes what add_pair_terms() sums over the pairs: the loads on the
-  /// obstacles, the potential, forces and gaps, and the normal forces
-  /// friction takes from this evaluation.
+  /// Resets what add_pair_terms() and add_friction_terms() accumulate over
+  /// the pairs: the loads on the obstacles, the potential, the forces and
+  /// the friction dissipation to zero, the gaps to infinity, and the
+  /// normal forces friction takes from this evaluation to none.
   void Contact::reset_pair_records()
   {
     for (auto &load : loads_)
