@@ -30,6 +30,12 @@ namespace coshell::solvers
       // 0.3 % error). LL' reports a non-positive pivot as the supernodal
       // factorization does, and the caller goes to UMFPACK.
       common.final_ll = true;
+      // Errors only: a matrix that is not positive definite is a warning
+      // to CHOLMOD, printed on stderr at its default level, but here it is
+      // an expected event (the caller goes to UMFPACK and counts it in
+      // summary.json's cholmod_fallbacks). The whole IOL scene printed
+      // some 450 such lines.
+      common.print = 1;
     }
 
     ~Data()

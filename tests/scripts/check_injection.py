@@ -103,6 +103,26 @@ def write_plunger_csv(path, time, displacement, push):
             f.write(f"{t:.9g},{u:.9g},{p:.9g}\n")
 
 
+def travel_measures(displacement, push, window=0.5):
+    """The forward push's largest force averaged over 'window' mm of
+    travel (N; nan for a shorter push) and its work (N mm). The largest
+    force itself is a spike about a tenth of a millimetre wide, and
+    Newton's settings alone moved it by 8 % on the whole scene, the
+    averaged force by 3 % and the work by 1 % (doc/validation.md)."""
+    if len(push) < 2:
+        return math.nan, math.nan
+    end = int(np.argmax(displacement)) + 1  # then the plunger withdraws
+    x, f = displacement[:end], push[:end]
+    work = float(np.sum(0.5 * (f[1:] + f[:-1]) * np.diff(x)))
+    if x[-1] - x[0] < window:
+        return math.nan, work
+    step = window / 100
+    grid = np.arange(x[0], x[-1], step)
+    samples = np.interp(grid, x, f)
+    averaged = np.convolve(samples, np.full(100, 0.01), mode="valid")
+    return float(averaged.max()), work
+
+
 def check_plunger_force(checks, forces, args, output):
     _, time, displacement, push = plunger_rows(forces, args.plunger)
     write_plunger_csv(os.path.join(output, "plunger_force.csv"), time,
@@ -110,6 +130,9 @@ def check_plunger_force(checks, forces, args, output):
     largest = push.max() if len(push) else math.nan
     print(f"plunger: largest force {1e3 * largest:.4g} mN, travel "
           f"{displacement.max():.4g} mm")
+    averaged, work = travel_measures(displacement, push)
+    print(f"plunger: largest force over 0.5 mm of travel "
+          f"{1e3 * averaged:.4g} mN, work of the push {work:.5g} N mm")
     checks("the plunger force is finite and positive",
            bool(np.all(np.isfinite(push))) and largest > 0)
     return time, displacement, push
