@@ -12,7 +12,8 @@ namespace coshell::model
                           const Vector<double>     &local_vector,
                           const std::vector<types::global_dof_index> &dofs,
                           SparseMatrix<double>                       *matrix,
-                          Vector<double>                             *vector)
+                          Vector<double>                             *vector,
+                          bool lower_only)
   {
     if (vector)
       for (unsigned int i = 0; i < dofs.size(); ++i)
@@ -25,7 +26,7 @@ namespace coshell::model
               [&](unsigned int a, unsigned int b)
               { return dofs[a] < dofs[b]; });
     for (unsigned int i = 0; i < dofs.size(); ++i)
-      add_row(local, i, dofs, *matrix);
+      add_row(local, i, dofs, *matrix, lower_only);
   }
 
   namespace
@@ -54,7 +55,8 @@ namespace coshell::model
   void DirectScatter::add_row(const FullMatrix<double>                   &local,
                               unsigned int                                i,
                               const std::vector<types::global_dof_index> &dofs,
-                              SparseMatrix<double> &matrix) const
+                              SparseMatrix<double> &matrix,
+                              bool                  lower_only) const
   {
     const SparsityPattern        &pattern = matrix.get_sparsity_pattern();
     const types::global_dof_index row     = dofs[i];
@@ -74,6 +76,8 @@ namespace coshell::model
     unsigned int k = 1;
     for (const unsigned int j : order_)
     {
+      if (lower_only && dofs[j] > row)
+        break; // the columns ascend: the rest lie above the diagonal
       if (j == i)
         continue;
       if (k >= length || pattern.column_number(row, k) != dofs[j])
@@ -90,11 +94,15 @@ namespace coshell::model
   {
     constexpr unsigned int entries_per_cell =
         element::shell_dofs * element::shell_dofs;
+    /// The entries with column <= row of a cell's distinct DoFs.
+    constexpr unsigned int lower_entries_per_cell =
+        (entries_per_cell + element::shell_dofs) / 2;
   } // namespace
 
   void CellScatter::invalidate()
   {
     positions_.clear();
+    lower_entries_.clear();
     mapped_.clear();
     pattern_ = nullptr;
   }
@@ -108,7 +116,8 @@ namespace coshell::model
   void CellScatter::add(const FullMatrix<double>                   &local,
                         const unsigned int                          cell_index,
                         const std::vector<types::global_dof_index> &dofs,
-                        SparseMatrix<double>                       &matrix)
+                        SparseMatrix<double>                       &matrix,
+                        bool                                        lower_only)
   {
     const SparsityPattern &pattern = matrix.get_sparsity_pattern();
     if (&pattern != pattern_ || pattern.n_nonzero_elements() != n_entries_)
@@ -121,6 +130,8 @@ namespace coshell::model
     {
       mapped_.resize(cell_index + 1, false);
       positions_.resize(std::size_t(cell_index + 1) * entries_per_cell);
+      lower_entries_.resize(std::size_t(cell_index + 1) *
+                            lower_entries_per_cell);
     }
     if (!mapped_[cell_index])
       map_cell(cell_index, dofs, pattern);
@@ -128,6 +139,20 @@ namespace coshell::model
         positions_.data() + std::size_t(cell_index) * entries_per_cell;
     // An iterator made from an index into the value array is that index,
     // nothing more: no row is looked up.
+    if (lower_only)
+    {
+      // Each entry gets the same sum, in the same order of cells, as the
+      // whole matrix's: the lower triangle is the same to the bit.
+      const unsigned short *entry =
+          lower_entries_.data() +
+          std::size_t(cell_index) * lower_entries_per_cell;
+      const double *values = &local(0, 0);
+      for (unsigned int k = 0; k < lower_entries_per_cell; ++k, ++entry)
+        SparseMatrixIterators::Iterator<double, false>(&matrix,
+                                                       position[*entry])
+            ->value() += values[*entry];
+      return;
+    }
     for (unsigned int i = 0; i < local.m(); ++i)
       for (unsigned int j = 0; j < local.n(); ++j, ++position)
         SparseMatrixIterators::Iterator<double, false>(&matrix, *position)
@@ -142,14 +167,22 @@ namespace coshell::model
                 ExcMessage("a cell block of another size than the shell's"));
     unsigned int *position =
         positions_.data() + std::size_t(cell_index) * entries_per_cell;
-    for (const auto row : dofs)
-      for (const auto column : dofs)
-      {
-        const std::size_t index = pattern(row, column);
-        AssertThrow(index != SparsityPattern::invalid_entry,
-                    ExcMessage("the sparsity pattern lacks a cell's coupling"));
-        *position++ = static_cast<unsigned int>(index);
-      }
+    unsigned short *lower = lower_entries_.data() +
+                            std::size_t(cell_index) * lower_entries_per_cell;
+    unsigned int n_lower = 0;
+    for (unsigned int k = 0; k < entries_per_cell; ++k)
+    {
+      const auto        row    = dofs[k / element::shell_dofs];
+      const auto        column = dofs[k % element::shell_dofs];
+      const std::size_t index  = pattern(row, column);
+      AssertThrow(index != SparsityPattern::invalid_entry,
+                  ExcMessage("the sparsity pattern lacks a cell's coupling"));
+      *position++ = static_cast<unsigned int>(index);
+      if (column <= row && n_lower++ < lower_entries_per_cell)
+        *lower++ = static_cast<unsigned short>(k);
+    }
+    AssertThrow(n_lower == lower_entries_per_cell,
+                ExcMessage("a cell's DoFs are not distinct"));
     mapped_[cell_index] = true;
   }
 } // namespace coshell::model

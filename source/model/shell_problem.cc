@@ -243,7 +243,8 @@ namespace coshell::model
         if (residual)
           for (unsigned int i = 0; i < copy.dofs.size(); ++i)
             (*residual)(copy.dofs[i]) += copy.vector(i);
-        cell_scatter_.add(copy.matrix, copy.cell_index, copy.dofs, tangent);
+        cell_scatter_.add(copy.matrix, copy.cell_index, copy.dofs, tangent,
+                          lower_only_);
         return;
       }
     if (residual)
@@ -319,7 +320,7 @@ namespace coshell::model
     if constexpr (std::is_same_v<Matrix, SparseMatrix<double>>)
       if (constraints_.n_constraints() == 0)
       {
-        scatter_.add(matrix, vector, dofs, tangent, residual);
+        scatter_.add(matrix, vector, dofs, tangent, residual, lower_only_);
         return true;
       }
     return false;
@@ -378,8 +379,10 @@ namespace coshell::model
     else
     {
       SparseMatrix<double> *matrix = tangent ? &tangent->serial() : nullptr;
+      lower_only_                  = tangent && tangent->lower_only();
       assemble(every, at, &residual, matrix);
       assemble_blocks(at, residual, matrix);
+      lower_only_ = false;
     }
     // Each contribution's global terms, kept by kind for the force scale.
     global_force_ = 0;

@@ -234,7 +234,8 @@ namespace coshell::solvers
 
   void LinearSolver::factorize(const SparseMatrix<double>  &matrix,
                                bool                         symmetric,
-                               const std::function<void()> &release_matrix)
+                               const std::function<void()> &release_matrix,
+                               const std::function<void()> &complete_matrix)
   {
     const Stopwatch timer(seconds_);
     backend_->using_cholmod = method_ == "cholmod" && symmetric;
@@ -252,7 +253,7 @@ namespace coshell::solvers
       }
       if (factorizations_before_retry_ > 0)
         --factorizations_before_retry_;
-      factorize_directly(matrix);
+      factorize_directly(matrix, complete_matrix);
       return;
     }
     ensure_mpi_initialized();
@@ -273,7 +274,9 @@ namespace coshell::solvers
     set_up_trilinos_solver();
   }
 
-  void LinearSolver::factorize_directly(const SparseMatrix<double> &matrix)
+  void
+  LinearSolver::factorize_directly(const SparseMatrix<double>  &matrix,
+                                   const std::function<void()> &complete_matrix)
   {
     ++factorizations_;
     factors_worn_out_ = false;
@@ -294,6 +297,8 @@ namespace coshell::solvers
         ++cholmod_fallbacks_;
       }
     }
+    if (complete_matrix)
+      complete_matrix();
     backend_->kept = Backend::Factors::none;
     backend_->umfpack.factorize(matrix);
     backend_->kept = Backend::Factors::umfpack;
@@ -322,8 +327,23 @@ namespace coshell::solvers
   {
     if (tangent.distributed())
       factorize(tangent.take_trilinos());
+    else if (tangent.lower_only())
+    {
+      if (!reads_lower_triangle(symmetric))
+        throw std::logic_error("LinearSolver: a tangent assembled below its "
+                               "diagonal only, for a solver that reads it "
+                               "whole");
+      factorize(tangent.serial(), symmetric, {},
+                [&tangent] { tangent.mirror_lower(); });
+    }
     else
       factorize(tangent.serial(), symmetric);
+  }
+
+  bool LinearSolver::reads_lower_triangle(bool symmetric) const
+  {
+    return method_ == "cholmod" && symmetric && !reuse_factorization_ &&
+           !distributed();
   }
 
   const IndexSet &LinearSolver::distributed_rows() const

@@ -168,6 +168,17 @@ namespace coshell::solvers
   {
   }
 
+  /// What the linear solver does not read, the problem need not assemble:
+  /// CHOLMOD reads a symmetric tangent's entries with column <= row only
+  /// (on the IOL scene the cells' scatter was 6 % of the run).
+  void Newton::assemble_for_solver(const NonlinearProblem &problem,
+                                   TangentMatrix          &tangent) const
+  {
+    if (!tangent.distributed())
+      tangent.set_lower_only(
+          linear_solver_.reads_lower_triangle(problem.symmetric_tangent()));
+  }
+
   Vector<double> Newton::correction(NonlinearProblem     &problem,
                                     TangentMatrix        &tangent,
                                     const Vector<double> &residual) const
@@ -313,6 +324,7 @@ namespace coshell::solvers
   {
     problem.begin_solve();
     Iterate it(problem, parameters_.residual_tolerance);
+    assemble_for_solver(problem, it.tangent);
     for (unsigned int iteration = 0;; ++iteration)
     {
       const bool last_expected =
@@ -422,6 +434,7 @@ namespace coshell::solvers
     problem.begin_solve();
     TangentMatrix tangent;
     problem.reinit_tangent(tangent);
+    assemble_for_solver(problem, tangent);
     Vector<double> residual(problem.sparsity().n_rows());
     problem.evaluate(residual, &tangent);
     const double relative_residual =

@@ -11,6 +11,7 @@ namespace coshell::solvers
     trilinos_pattern_ = nullptr;
     trilinos_.reset();
     serial_.reinit(pattern);
+    mirrors_.clear();
   }
 
   void TangentMatrix::reinit(const TrilinosWrappers::SparsityPattern &pattern)
@@ -47,6 +48,44 @@ namespace coshell::solvers
       throw std::logic_error("TangentMatrix::serial() of a distributed "
                              "tangent");
     return serial_;
+  }
+
+  void TangentMatrix::set_lower_only(bool lower)
+  {
+    if (lower && distributed())
+      throw std::logic_error("TangentMatrix: a distributed tangent is "
+                             "assembled whole");
+    lower_only_ = lower;
+  }
+
+  bool TangentMatrix::lower_only() const
+  {
+    return lower_only_;
+  }
+
+  void TangentMatrix::mirror_lower()
+  {
+    const SparsityPattern &pattern = serial_.get_sparsity_pattern();
+    if (mirrors_.empty())
+      for (SparsityPattern::size_type row = 0; row < pattern.n_rows(); ++row)
+        for (auto entry = pattern.begin(row); entry != pattern.end(row);
+             ++entry)
+          if (entry->column() < row)
+          {
+            const std::size_t mirror = pattern(entry->column(), row);
+            if (mirror == SparsityPattern::invalid_entry)
+              throw std::logic_error("TangentMatrix::mirror_lower(): the "
+                                     "pattern is not symmetric");
+            mirrors_.emplace_back(entry->global_index(), mirror);
+          }
+    using Entry = SparseMatrixIterators::Iterator<double, false>;
+    for (const auto &[from, to] : mirrors_)
+    {
+      // A double, not the proxy: assigning one proxy to another would
+      // copy the proxy and leave the matrix as it was.
+      const double value           = Entry(&serial_, from)->value();
+      Entry(&serial_, to)->value() = value;
+    }
   }
 
   TrilinosWrappers::SparseMatrix &TangentMatrix::trilinos()

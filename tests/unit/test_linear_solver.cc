@@ -298,3 +298,52 @@ TEST(LinearSolverRelease, MethodsThatReadTheMatrixLaterNeverRelease)
   EXPECT_FALSE(released);
   expect_direct_answer(system.matrix, b, x, 1e-9);
 }
+
+// A symmetric tangent assembled below its diagonal only (what CHOLMOD
+// reads) is solved as the whole one: by CHOLMOD when it is positive
+// definite, and, when CHOLMOD refuses it, by UMFPACK after the lower
+// triangle is mirrored onto the upper one.
+TEST(LinearSolverLowerTriangle, ATangentAssembledBelowItsDiagonalIsSolvedWhole)
+{
+  const Vector<double> b = smooth_load(200);
+  // Shifted by -3.9 the operator is indefinite (Gershgorin, above).
+  for (const double shift : {0.0, -3.9})
+  {
+    Tridiagonal                     whole(200);
+    const SparseMatrix<double>     &matrix = whole.set_symmetric(shift);
+    coshell::solvers::TangentMatrix lower;
+    lower.reinit(whole.pattern);
+    lower.set_lower_only(true);
+    lower.zero();
+    for (unsigned int i = 0; i < 200; ++i)
+      for (auto e = matrix.begin(i); e != matrix.end(i); ++e)
+        if (e->column() <= i)
+          lower.serial().set(i, e->column(), e->value());
+    LinearSolver solver;
+    configure(solver, {{"Method", "cholmod"}});
+    ASSERT_TRUE(solver.reads_lower_triangle(true));
+    EXPECT_FALSE(solver.reads_lower_triangle(false));
+    solver.factorize(lower, true);
+    Vector<double> x(200);
+    solver.solve(x, b);
+    EXPECT_EQ(solver.cholmod_fallbacks(), shift < 0 ? 1u : 0u);
+    expect_direct_answer(matrix, b, x, 1e-10);
+    // Mirrored only for UMFPACK.
+    EXPECT_EQ(lower.serial().el(0, 1), shift < 0 ? matrix.el(1, 0) : 0.0);
+  }
+}
+
+TEST(LinearSolverLowerTriangle, OnlyCholmodWithoutKeptFactorsReadsIt)
+{
+  LinearSolver umfpack, kept;
+  configure(umfpack, false);
+  configure(kept, {{"Method", "cholmod"}, {"Reuse factorization", "true"}});
+  EXPECT_FALSE(umfpack.reads_lower_triangle(true));
+  EXPECT_FALSE(kept.reads_lower_triangle(true));
+  Tridiagonal                     system(10);
+  coshell::solvers::TangentMatrix lower;
+  lower.reinit(system.pattern);
+  lower.set_lower_only(true);
+  lower.zero();
+  EXPECT_THROW(umfpack.factorize(lower, true), std::logic_error);
+}

@@ -28,18 +28,21 @@ namespace coshell::model
     /// Adds 'local' (if given a matrix) and 'local_vector' (if given a
     /// vector) at 'dofs', which must be distinct. Couplings that the matrix's
     /// pattern lacks are left out, as ShellProblem::within_pattern() leaves
-    /// them.
+    /// them. With 'lower_only', only the entries with column <= row
+    /// (solvers::TangentMatrix::set_lower_only()).
     void add(const dealii::FullMatrix<double>                   &local,
              const dealii::Vector<double>                       &local_vector,
              const std::vector<dealii::types::global_dof_index> &dofs,
              dealii::SparseMatrix<double>                       *matrix,
-             dealii::Vector<double>                             *vector);
+             dealii::Vector<double>                             *vector,
+             bool lower_only = false);
 
   private:
     void add_row(const dealii::FullMatrix<double>                   &local,
                  unsigned int                                        i,
                  const std::vector<dealii::types::global_dof_index> &dofs,
-                 dealii::SparseMatrix<double> &matrix) const;
+                 dealii::SparseMatrix<double>                       &matrix,
+                 bool lower_only) const;
 
     /// The block's local indices sorted by global DoF (reused storage).
     std::vector<unsigned int> order_;
@@ -65,17 +68,21 @@ namespace coshell::model
     /// Whether a mesh of 'n_cells' gets a map.
     static bool worth_a_map(unsigned int n_cells);
     /// Adds cell 'cell_index's 'local' matrix at 'dofs' (the cell's DoFs in
-    /// the order of its local matrix). The first call after invalidate()
-    /// maps the cell.
+    /// the order of its local matrix); with 'lower_only' only the entries
+    /// with column <= row. The first call after invalidate() maps the cell.
     void add(const dealii::FullMatrix<double>                   &local,
              unsigned int                                        cell_index,
              const std::vector<dealii::types::global_dof_index> &dofs,
-             dealii::SparseMatrix<double>                       &matrix);
+             dealii::SparseMatrix<double>                       &matrix,
+             bool lower_only = false);
 
   private:
     /// Per cell, the value-array index of each local entry (row-major);
     /// 'mapped_' tells which cells have theirs.
-    std::vector<unsigned int>      positions_;
+    std::vector<unsigned int> positions_;
+    /// Per cell, the local entries (row-major index) with column <= row
+    /// in the matrix: 171 of the 324, the diagonal's 18 and half the rest.
+    std::vector<unsigned short>    lower_entries_;
     std::vector<bool>              mapped_;
     const dealii::SparsityPattern *pattern_   = nullptr;
     std::size_t                    n_entries_ = 0;

@@ -167,6 +167,10 @@ namespace coshell::model
     /// Adds the cells' matrices where no DoF is constrained; its map
     /// follows sparsity_.
     CellScatter cell_scatter_;
+    /// The evaluation's tangent takes only the entries with column <= row
+    /// (solvers::TangentMatrix::set_lower_only()); set while evaluate()
+    /// assembles.
+    bool lower_only_ = false;
     /// Adds a cell's matrix (and vector, if given) into 'tangent'.
     template<typename Matrix>
     void add_cell_terms(const CellContribution &copy,

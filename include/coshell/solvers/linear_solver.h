@@ -36,8 +36,9 @@ namespace coshell::solvers
     /// matrix (about 0.5 KB per DoF). Methods that keep reading 'matrix'
     /// never call it.
     void factorize(const dealii::SparseMatrix<double> &matrix,
-                   bool                                symmetric      = true,
-                   const std::function<void()>        &release_matrix = {});
+                   bool                                symmetric       = true,
+                   const std::function<void()>        &release_matrix  = {},
+                   const std::function<void()>        &complete_matrix = {});
     /// On several ranks: takes over a Trilinos matrix whose rows are
     /// distributed_rows(), assembled by the ranks together, and factorizes
     /// it or sets up its preconditioner; no rank holds the whole matrix.
@@ -45,6 +46,12 @@ namespace coshell::solvers
     /// A tangent assembled by a NonlinearProblem: the deal.II matrix as
     /// above, or the distributed one, which the solver takes over.
     void factorize(TangentMatrix &tangent, bool symmetric);
+    /// Whether factorize() reads only the entries with column <= row of a
+    /// tangent with this symmetry: CHOLMOD's, without kept factors (whose
+    /// GMRES multiplies by the whole matrix). A tangent assembled so
+    /// (TangentMatrix::set_lower_only()) is mirrored if CHOLMOD refuses it
+    /// and UMFPACK takes over.
+    bool reads_lower_triangle(bool symmetric) const;
     /// The rows this rank holds under mpirun (see set_row_partition); empty
     /// on one rank, where the solvers take complete deal.II matrices.
     const dealii::IndexSet &distributed_rows() const;
@@ -143,8 +150,10 @@ namespace coshell::solvers
     void set_up_trilinos_solver();
     void initialize_amg();
     /// Factorizes 'matrix' now (CHOLMOD if asked for and it succeeds,
-    /// UMFPACK otherwise); its factors become the kept ones.
-    void        factorize_directly(const dealii::SparseMatrix<double> &matrix);
+    /// UMFPACK otherwise, after 'complete_matrix' if given); its factors
+    /// become the kept ones.
+    void        factorize_directly(const dealii::SparseMatrix<double> &matrix,
+                                   const std::function<void()> &complete_matrix = {});
     bool        solve_with_kept_factors(dealii::Vector<double>       &x,
                                         const dealii::Vector<double> &b);
     bool        is_amesos() const;

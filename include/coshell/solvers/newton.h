@@ -81,6 +81,9 @@ namespace coshell::solvers
     NewtonParameters parameters_;
     LinearSolver    &linear_solver_;
 
+    /// Lets the problem assemble only what the linear solver reads.
+    void assemble_for_solver(const NonlinearProblem &problem,
+                             TangentMatrix          &tangent) const;
     /// Factorizes the tangent and solves for the correction (distributed).
     dealii::Vector<double>
     correction(NonlinearProblem             &problem,

@@ -7,6 +7,8 @@
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
 
 #include <memory>
+#include <utility>
+#include <vector>
 
 namespace coshell::solvers
 {
@@ -31,6 +33,16 @@ namespace coshell::solvers
     void zero();
 
     dealii::SparseMatrix<double> &serial();
+    /// One rank only. With 'lower' set, assembly may write only the
+    /// entries with column <= row: all that CHOLMOD reads of a symmetric
+    /// matrix (the upper triangle in its column storage). The others stay
+    /// zero until mirror_lower().
+    void set_lower_only(bool lower);
+    bool lower_only() const;
+    /// Copies each entry below the diagonal onto its mirror above it, for
+    /// a reader of the whole matrix (UMFPACK, when CHOLMOD refuses it).
+    /// The pattern must be symmetric.
+    void mirror_lower();
     /// Only while distributed(), after zero().
     dealii::TrilinosWrappers::SparseMatrix &trilinos();
     /// Hands the assembled distributed matrix over; trilinos() is empty
@@ -42,6 +54,10 @@ namespace coshell::solvers
     const dealii::TrilinosWrappers::SparsityPattern *trilinos_pattern_ =
         nullptr;
     dealii::SparseMatrix<double> serial_;
+    bool                         lower_only_ = false;
+    /// Value-array positions of each entry below the diagonal and of its
+    /// mirror, found once per pattern.
+    std::vector<std::pair<std::size_t, std::size_t>> mirrors_;
     /// Made only on the distributed path: a Trilinos object built before
     /// MPI starts (a serial run) would abort.
     std::unique_ptr<dealii::TrilinosWrappers::SparseMatrix> trilinos_;
