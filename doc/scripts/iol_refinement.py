@@ -18,7 +18,6 @@ iol_refinement.png, stamped with machine and commit.
       [--meshes 4] [--push 1.0] [--timeout 5400]
 """
 import argparse
-import csv
 import json
 import os
 import subprocess
@@ -30,8 +29,8 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from doc_common import (ROOT, finish_plot, largest_strains,  # noqa: E402
                         machine_and_commit, write_csv)
 sys.path.insert(0, os.path.join(ROOT, "tests", "scripts"))
-from check_injection import travel_measures  # noqa: E402
-import numpy as np  # noqa: E402
+from check_injection import plunger_rows, travel_measures  # noqa: E402
+from scene_runner import read_rows  # noqa: E402
 
 import matplotlib  # noqa: E402
 matplotlib.use("Agg")
@@ -42,16 +41,14 @@ SCENE = os.path.join(ROOT, "prm", "iol", "injection.prm")
 # (optic, haptic) gmsh sizes in mm: the ctest lens, the default lens, then
 # the default halved and quartered.
 MESHES = [(0.9, 0.35), (0.55, 0.22), (0.275, 0.11), (0.1375, 0.055)]
-PLUNGER = "2"  # the plunger is Contact/Obstacle 2 of the scene
+PLUNGER = 2  # the plunger is Contact/Obstacle 2 of the scene
 
 
 def plunger_forces(output):
     """The plunger's displacements (mm) and axial forces on the lens (N)."""
-    with open(os.path.join(output, "contact_forces.csv")) as f:
-        rows = [r for r in csv.DictReader(f) if r["obstacle"] == PLUNGER]
-    # The shell's force on the plunger is -x while it pushes the lens +x.
-    return (np.array([float(r["ux"]) for r in rows]),
-            np.array([-float(r["fx"]) for r in rows]))
+    forces = read_rows(os.path.join(output, "contact_forces.csv"))
+    _, _, displacement, push = plunger_rows(forces, PLUNGER)
+    return displacement, push
 
 
 def run(sizes, coshell, push, timeout, work):

@@ -109,7 +109,9 @@ namespace coshell::model
 
   bool CellScatter::worth_a_map(const unsigned int n_cells)
   {
-    return std::size_t(n_cells) * entries_per_cell * sizeof(unsigned int) <=
+    return std::size_t(n_cells) *
+               (entries_per_cell * sizeof(unsigned int) +
+                lower_entries_per_cell * sizeof(unsigned short)) <=
            largest_map_bytes;
   }
 

@@ -349,6 +349,26 @@ namespace coshell::model
     return assembly_seconds_;
   }
 
+  namespace
+  {
+    /// Sets a flag for a scope, and unsets it however the scope ends.
+    class LowerOnly
+    {
+    public:
+      LowerOnly(bool &flag, bool value) : flag_(flag)
+      {
+        flag_ = value;
+      }
+      ~LowerOnly()
+      {
+        flag_ = false;
+      }
+
+    private:
+      bool &flag_;
+    };
+  } // namespace
+
   void ShellProblem::evaluate(Vector<double>         &residual,
                               solvers::TangentMatrix *tangent)
   {
@@ -379,10 +399,9 @@ namespace coshell::model
     else
     {
       SparseMatrix<double> *matrix = tangent ? &tangent->serial() : nullptr;
-      lower_only_                  = tangent && tangent->lower_only();
+      const LowerOnly lower(lower_only_, tangent && tangent->lower_only());
       assemble(every, at, &residual, matrix);
       assemble_blocks(at, residual, matrix);
-      lower_only_ = false;
     }
     // Each contribution's global terms, kept by kind for the force scale.
     global_force_ = 0;

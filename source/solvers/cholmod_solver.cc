@@ -34,7 +34,7 @@ namespace coshell::solvers
       // to CHOLMOD, printed on stderr at its default level, but here it is
       // an expected event (the caller goes to UMFPACK and counts it in
       // summary.json's cholmod_fallbacks). The whole IOL scene printed
-      // some 450 such lines.
+      // 488 such lines.
       common.print = 1;
     }
 

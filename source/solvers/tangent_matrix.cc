@@ -11,6 +11,7 @@ namespace coshell::solvers
     trilinos_pattern_ = nullptr;
     trilinos_.reset();
     serial_.reinit(pattern);
+    lower_only_ = false;
     mirrors_.clear();
   }
 
@@ -65,19 +66,8 @@ namespace coshell::solvers
 
   void TangentMatrix::mirror_lower()
   {
-    const SparsityPattern &pattern = serial_.get_sparsity_pattern();
     if (mirrors_.empty())
-      for (SparsityPattern::size_type row = 0; row < pattern.n_rows(); ++row)
-        for (auto entry = pattern.begin(row); entry != pattern.end(row);
-             ++entry)
-          if (entry->column() < row)
-          {
-            const std::size_t mirror = pattern(entry->column(), row);
-            if (mirror == SparsityPattern::invalid_entry)
-              throw std::logic_error("TangentMatrix::mirror_lower(): the "
-                                     "pattern is not symmetric");
-            mirrors_.emplace_back(entry->global_index(), mirror);
-          }
+      find_mirrors();
     using Entry = SparseMatrixIterators::Iterator<double, false>;
     for (const auto &[from, to] : mirrors_)
     {
@@ -86,6 +76,42 @@ namespace coshell::solvers
       const double value           = Entry(&serial_, from)->value();
       Entry(&serial_, to)->value() = value;
     }
+  }
+
+  /// One pass over the rows in order: the mirrors of the entries below the
+  /// diagonal in rows 0, 1, 2, ... are, in each column c's own row c, the
+  /// entries above its diagonal in ascending order. A cursor per row walks
+  /// them, with no search.
+  void TangentMatrix::find_mirrors()
+  {
+    const SparsityPattern &pattern = serial_.get_sparsity_pattern();
+    const auto             n       = pattern.n_rows();
+    if (n == 0)
+      return;
+    // deal.II stores each row's diagonal first, then the other columns
+    // ascending: the entries above the diagonal end the row.
+    std::vector<SparsityPattern::iterator> above(n, pattern.end(0));
+    for (SparsityPattern::size_type row = 0; row < n; ++row)
+    {
+      above[row] = pattern.begin(row);
+      while (above[row] != pattern.end(row) && above[row]->column() <= row)
+        ++above[row];
+    }
+    mirrors_.reserve((pattern.n_nonzero_elements() - n) / 2);
+    for (SparsityPattern::size_type row = 0; row < n; ++row)
+      for (auto entry = pattern.begin(row); entry != pattern.end(row); ++entry)
+      {
+        const auto column = entry->column();
+        if (column >= row)
+          continue;
+        if (above[column] == pattern.end(column) ||
+            above[column]->column() != row)
+          throw std::logic_error("TangentMatrix::mirror_lower(): the "
+                                 "pattern is not symmetric");
+        mirrors_.emplace_back(entry->global_index(),
+                              above[column]->global_index());
+        ++above[column];
+      }
   }
 
   TrilinosWrappers::SparseMatrix &TangentMatrix::trilinos()

@@ -109,10 +109,12 @@ def travel_measures(displacement, push, window=0.5):
     force itself is a spike about a tenth of a millimetre wide, and
     Newton's settings alone moved it by 8 % on the whole scene, the
     averaged force by 3 % and the work by 1 % (doc/validation.md)."""
-    if len(push) < 2:
+    end = int(np.argmax(displacement)) + 1 if len(push) else 0
+    if end < 2:  # no forward push
         return math.nan, math.nan
-    end = int(np.argmax(displacement)) + 1  # then the plunger withdraws
-    x, f = displacement[:end], push[:end]
+    # The travel so far: a prescribed push does not step back, and
+    # np.interp needs it ascending.
+    x, f = np.maximum.accumulate(displacement[:end]), push[:end]
     work = float(np.sum(0.5 * (f[1:] + f[:-1]) * np.diff(x)))
     if x[-1] - x[0] < window:
         return math.nan, work

@@ -201,3 +201,45 @@ TEST(InternalForce, AFailedStepLeavesTheStageOnTheExactTangent)
     }
   }
 }
+
+// A symmetric tangent assembled below its diagonal only, for CHOLMOD
+// (TangentMatrix::set_lower_only), is the whole one's lower triangle to
+// the bit, with the same residual, and mirrored it is the whole tangent.
+TEST(ShellProblem, AssemblesTheLowerTriangleAloneToTheBit)
+{
+  PlateMesh                                         plate;
+  std::vector<std::unique_ptr<model::Contribution>> contributions;
+  contributions.push_back(std::make_unique<model::InternalForce>(
+      plate.model, model::Formulation::corotational,
+      element::CorotationalTangent::symmetric, false, false));
+  model::ShellProblem problem(plate.model, plate.state, plate.constraints,
+                              std::move(contributions));
+  ASSERT_TRUE(problem.symmetric_tangent());
+  dealii::Vector<double> deformation(plate.model.n_dofs());
+  for (unsigned int k = 0; k < deformation.size(); ++k)
+    deformation[k] = 0.1 * std::sin(1.7 * (k + 1));
+  problem.apply_increment(deformation);
+  solvers::TangentMatrix whole, lower;
+  problem.reinit_tangent(whole);
+  problem.reinit_tangent(lower);
+  lower.set_lower_only(true);
+  dealii::Vector<double> whole_residual(deformation.size()),
+      lower_residual(deformation.size());
+  whole.zero();
+  problem.evaluate(whole_residual, &whole);
+  lower.zero();
+  problem.evaluate(lower_residual, &lower);
+  for (unsigned int k = 0; k < deformation.size(); ++k)
+    ASSERT_EQ(lower_residual[k], whole_residual[k]) << "residual " << k;
+  const auto &matrix = whole.serial();
+  for (unsigned int i = 0; i < matrix.m(); ++i)
+    for (auto e = matrix.begin(i); e != matrix.end(i); ++e)
+      ASSERT_EQ(lower.serial().el(i, e->column()),
+                e->column() <= i ? e->value() : 0.0)
+          << "entry (" << i << ", " << e->column() << ")";
+  lower.mirror_lower();
+  for (unsigned int i = 0; i < matrix.m(); ++i)
+    for (auto e = matrix.begin(i); e != matrix.end(i); ++e)
+      ASSERT_EQ(lower.serial().el(i, e->column()), e->value())
+          << "entry (" << i << ", " << e->column() << "), mirrored";
+}

@@ -55,7 +55,8 @@ namespace coshell::model
   /// distribute_local_to_global are paid once instead of at every
   /// assembly (7 % of a linearized IOL step). The sums are the same, in
   /// the same order, so results are identical to the bit. The map holds
-  /// 324 indices a cell; a mesh whose map would pass 'largest_map_bytes'
+  /// 324 indices a cell, and which 171 of them lie on or below the
+  /// diagonal; a mesh whose map would pass 'largest_map_bytes'
   /// keeps deal.II's path: there the solve, not the scatter, dominates.
   class CellScatter
   {

@@ -33,10 +33,10 @@ namespace coshell::solvers
     void zero();
 
     dealii::SparseMatrix<double> &serial();
-    /// One rank only. With 'lower' set, assembly may write only the
-    /// entries with column <= row: all that CHOLMOD reads of a symmetric
-    /// matrix (the upper triangle in its column storage). The others stay
-    /// zero until mirror_lower().
+    /// One rank only; reinit() unsets it. With 'lower' set, assembly may
+    /// write only the entries with column <= row: all that CHOLMOD reads
+    /// of a symmetric matrix (the upper triangle in its column storage).
+    /// The others stay zero until mirror_lower().
     void set_lower_only(bool lower);
     bool lower_only() const;
     /// Copies each entry below the diagonal onto its mirror above it, for
@@ -56,8 +56,10 @@ namespace coshell::solvers
     dealii::SparseMatrix<double> serial_;
     bool                         lower_only_ = false;
     /// Value-array positions of each entry below the diagonal and of its
-    /// mirror, found once per pattern.
+    /// mirror, found at the first mirror_lower() after reinit() (once per
+    /// Newton solve that falls back to UMFPACK).
     std::vector<std::pair<std::size_t, std::size_t>> mirrors_;
+    void                                             find_mirrors();
     /// Made only on the distributed path: a Trilinos object built before
     /// MPI starts (a serial run) would abort.
     std::unique_ptr<dealii::TrilinosWrappers::SparseMatrix> trilinos_;
