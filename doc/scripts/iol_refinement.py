@@ -45,10 +45,11 @@ PLUNGER = 2  # the plunger is Contact/Obstacle 2 of the scene
 
 
 def plunger_forces(output):
-    """The plunger's displacements (mm) and axial forces on the lens (N)."""
+    """The plunger's displacements (mm), axial forces on the lens (N) and
+    cumulative work on it (N mm)."""
     forces = read_rows(os.path.join(output, "contact_forces.csv"))
-    _, _, displacement, push = plunger_rows(forces, PLUNGER)
-    return displacement, push
+    _, _, displacement, push, work = plunger_rows(forces, PLUNGER)
+    return displacement, push, work
 
 
 def run(sizes, coshell, push, timeout, work):
@@ -72,8 +73,8 @@ def run(sizes, coshell, push, timeout, work):
                 "status": process.stderr.strip().splitlines()[-1]}
     with open(os.path.join(output, "summary.json")) as f:
         summary = json.load(f)
-    displacement, forces = plunger_forces(output)
-    averaged, work = travel_measures(displacement, forces)
+    displacement, forces, work_so_far = plunger_forces(output)
+    averaged, work = travel_measures(displacement, forces, work_so_far)
     bending, membrane = largest_strains(output)
     seconds = summary["time_stepping_s"]
     return {
