@@ -30,12 +30,13 @@ namespace coshell::solvers
       // 0.3 % error). LL' reports a non-positive pivot as the supernodal
       // factorization does, and the caller goes to UMFPACK.
       common.final_ll = true;
-      // Errors only: a matrix that is not positive definite is a warning
-      // to CHOLMOD, printed on stderr at its default level, but here it is
-      // an expected event (the caller goes to UMFPACK and counts it in
-      // summary.json's cholmod_fallbacks). The whole IOL scene printed
-      // 488 such lines.
-      common.print = 1;
+      // Silent: CHOLMOD prints with printf, on standard output, which an
+      // --interactive run keeps for its protocol. A matrix that is not
+      // positive definite is an expected event here (the caller goes to
+      // UMFPACK and counts it in summary.json's cholmod_fallbacks); below
+      // level 2 CHOLMOD prints that warning as "CHOLMOD error", 488 lines
+      // in the IOL scene. Real failures reach the caller as its status.
+      common.print = 0;
     }
 
     ~Data()

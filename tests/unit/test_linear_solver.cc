@@ -238,6 +238,30 @@ TEST(LinearSolverReuse, IndefiniteMatrixAfterKeptCholmodFactorsGoesToUmfpack)
   expect_direct_answer(system.matrix, b, x, 1e-10);
 }
 
+// A refused matrix is an expected event (UMFPACK takes it, counted in
+// summary.json), and CHOLMOD says nothing about it: its messages go to
+// standard output, which an --interactive run keeps for the protocol. At
+// print level 1 it wrote "CHOLMOD error: matrix not positive definite"
+// there for every refusal (488 lines in the IOL scene).
+TEST(LinearSolverFallback, CholmodRefusesAnIndefiniteMatrixSilently)
+{
+  Tridiagonal    system(200);
+  Vector<double> b(200), x(200);
+  b = 1.0;
+  LinearSolver solver;
+  configure(solver, {{"Method", "cholmod"}});
+  testing::internal::CaptureStdout();
+  testing::internal::CaptureStderr();
+  solver.factorize(system.set_symmetric(-3.9), true);
+  solver.solve(x, b);
+  const std::string out = testing::internal::GetCapturedStdout(),
+                    err = testing::internal::GetCapturedStderr();
+  EXPECT_EQ(solver.cholmod_fallbacks(), 1u);
+  EXPECT_EQ(out, "");
+  EXPECT_EQ(err, "");
+  expect_direct_answer(system.matrix, b, x, 1e-10);
+}
+
 // A Newton correction skips UMFPACK's iterative refinement: the factors
 // applied once still solve a well-conditioned system to round-off, after
 // a fresh factorization as after kept factors gave up.
