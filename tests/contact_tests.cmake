@@ -274,6 +274,14 @@ coshell_bad_input_test(contact_empty_obstacle_mesh
 coshell_bad_input_test(contact_shell_starts_inside
   "the shell starts inside obstacle 'plane' .Contact/Obstacle 1.: shell vertex"
   ${plane_scene} --set "Contact/Obstacle 1/Translation=0$<SEMICOLON> 0$<SEMICOLON> -0.2")
+coshell_bad_input_test(contact_zero_input_direction
+  "Contact/Obstacle 1/Input direction: must not be zero"
+  ${plane_scene} --set "Contact/Obstacle 1/Input direction=0, 0, 0")
+coshell_bad_input_test(contact_input_with_checkpoints
+  "Output/Checkpoint interval: a checkpoint would not hold the input"
+  ${plane_scene} --interactive --set "Analysis/Type=dynamic"
+  --set "Contact/Obstacle 1/Input direction=0, 0, 1"
+  --set "Output/Checkpoint interval=0.01")
 coshell_bad_input_test(contact_negative_friction
   "Contact/Obstacle 1 .'plane'.: Friction coefficient: -0.1 is negative"
   ${plane_scene} --set "Contact/Obstacle 1/Friction coefficient=-0.1")
@@ -387,3 +395,27 @@ add_test(NAME restart.funnel_friction
           --set "Contact/Obstacle 1/Friction coefficient=0.1"
           --end 0.4 --interval 0.1 --tolerance 1e-12)
 set_tests_properties(restart.funnel_friction PROPERTIES LABELS contact)
+
+# An obstacle driven by the interactive protocol (a haptic device's
+# plunger): the plane under the plate of plate_on_plane.prm, dynamic,
+# meets the plate at 0.01 s, stops until 0.015 s and then pushes it up,
+# 0.07 mm in all by 0.04 s. Once prescribed by its Translation (-0.27 +
+# 2 min(t, 0.01) + 2 max(t - 0.015, 0)), once by the session's lines
+# '0.01 0.02', '0.015' (the input held) and '0.04 0.07' with Input
+# direction = 0, 0, 1 on a Translation of -0.27: the input path is linear
+# between its samples and ramps from the present, as the prescribed
+# motion does, so the two runs must agree to round-off (measured: to the
+# digit): time_history.csv and contact_forces.csv within 1e-12 relative.
+# Then the refusals, each an error line with the run going on: an input
+# for a time before the present, a line that is neither 't' nor 't s',
+# an input when no obstacle takes one.
+add_test(NAME contact.interactive_input_drives_obstacle
+  COMMAND ${COSHELL_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_interactive_input.py
+          --coshell $<TARGET_FILE:coshell> --prm ${plane_scene}
+          --output ${CMAKE_CURRENT_BINARY_DIR}/output/contact.interactive_input_drives_obstacle
+          --obstacles 1 --set "Analysis/Type=dynamic"
+          --prescribed "Contact/Obstacle 1/Translation=0$<SEMICOLON> 0$<SEMICOLON> -0.27 + 2 * min(t, 0.01) + 2 * max(t - 0.015, 0)"
+          --driven "Contact/Obstacle 1/Translation=0$<SEMICOLON> 0$<SEMICOLON> -0.27"
+          --driven "Contact/Obstacle 1/Input direction=0, 0, 1"
+          --targets "0.01 0.015 0.04" --inputs "0.02 - 0.07")
+set_tests_properties(contact.interactive_input_drives_obstacle PROPERTIES LABELS contact)

@@ -317,3 +317,23 @@ coshell_bad_input_test(restart_into_static_scene "not a dynamic stage of this sc
   --set "Analysis/Type=nonlinear static")
 set_tests_properties(bad_input.restart_other_mesh bad_input.restart_into_static_scene
   PROPERTIES FIXTURES_REQUIRED free_flying_checkpoint)
+
+# The interactive protocol across stages: the free-flying plate in two
+# dynamic stages of 0.2 s and 0.3 s (0.02 s steps). Session 1: a target
+# past the first stage's end carries on into the second and gets one
+# 'done' where it is reached (0.35 s); 'quit' ends the run there. Session
+# 2: 'quit' in the first stage ends the run at 0.1 s; the line after it
+# is not read and the second stage does not start. Session 3: a target
+# past the scene's end gets its 'done' at the end, 0.5 s. Each: step
+# times strictly rising, summary.json's simulated time the time reached.
+add_test(NAME dynamics.interactive_across_stages
+  COMMAND ${COSHELL_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_interactive.py
+          --coshell $<TARGET_FILE:coshell> --prm ${COSHELL_PRM}/${free_flying}
+          --output ${CMAKE_CURRENT_BINARY_DIR}/output/dynamics.interactive_across_stages
+          --obstacles 0
+          --set "Stage 1/Analysis type=dynamic" --set "Stage 1/Duration=0.2"
+          --set "Stage 2/Analysis type=dynamic" --set "Stage 2/Duration=0.3"
+          --case "0.1 0.35 0.2 quit 0.45" "0.1 0.35 0.35" 0.35
+          --case "0.1 quit 0.45" "0.1" 0.1
+          --case "0.7 0.8" "0.5" 0.5)
+set_tests_properties(dynamics.interactive_across_stages PROPERTIES LABELS dynamics)

@@ -3,6 +3,7 @@
 
 #include <deal.II/base/utilities.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -15,9 +16,40 @@ namespace coshell::contact
 {
   using namespace dealii;
 
+  void InputPath::append(double now, double time, double value)
+  {
+    // A hold at the present first, so that the ramp to the new sample
+    // starts where the run is and the time integrated so far keeps its
+    // positions.
+    if (samples_.empty() || now > samples_.back().first)
+      samples_.emplace_back(now, this->value(now));
+    if (!(time > samples_.back().first))
+      throw std::invalid_argument("an input must be for a time after the "
+                                  "present");
+    samples_.emplace_back(time, value);
+  }
+
+  double InputPath::value(double time) const
+  {
+    if (samples_.empty())
+      return 0;
+    const auto after = std::upper_bound(samples_.begin(), samples_.end(), time,
+                                        [](double t, const auto &sample)
+                                        { return t < sample.first; });
+    if (after == samples_.begin())
+      return samples_.front().second;
+    if (after == samples_.end())
+      return samples_.back().second;
+    const auto &[t0, s0] = *(after - 1);
+    const auto &[t1, s1] = *after;
+    return s0 + (s1 - s0) * (time - t0) / (t1 - t0);
+  }
+
   std::vector<Point<3>> Obstacle::positions(double time) const
   {
-    const auto            pose = motion.pose(time);
+    auto pose = motion.pose(time);
+    if (input)
+      pose.translation += input->value(time) * input_direction;
     std::vector<Point<3>> x(vertices.size());
     for (unsigned int i = 0; i < vertices.size(); ++i)
       x[i] = pose(vertices[i]);
@@ -201,6 +233,15 @@ namespace coshell::contact
                                 prm.get("Gmsh parameters"), "Gmsh parameters"));
       obstacle.vertex_area = vertex_areas(obstacle);
       obstacle.motion.parse_entries(prm, where);
+      const std::string direction = Utilities::trim(prm.get("Input direction"));
+      if (!direction.empty())
+      {
+        obstacle.input_direction =
+            model::parse_three_numbers(direction, where + "/Input direction");
+        if (obstacle.input_direction.norm() == 0)
+          throw std::invalid_argument(where +
+                                      "/Input direction: must not be zero");
+      }
       obstacle.friction_coefficient = prm.get_double("Friction coefficient");
       obstacle.offset               = prm.get_double("Offset");
       if (!(obstacle.friction_coefficient >= 0))
@@ -232,6 +273,13 @@ namespace coshell::contact
                         Patterns::Anything(),
                         "Name in messages and in contact_forces.csv.");
       model::RigidMotion::declare_entries(prm);
+      prm.declare_entry(
+          "Input direction", "", Patterns::Anything(),
+          "'a, b, c' (dimensionless): with --interactive, a protocol line "
+          "'t s' moves this obstacle by s times this vector (s in length "
+          "units) at time t (s), linearly from the present, on top of its "
+          "Translation and Rotation: a haptic device drives it. Empty: the "
+          "obstacle takes no input.");
       prm.declare_entry("Friction coefficient", "0", Patterns::Double(),
                         "Coulomb friction coefficient mu against the shell "
                         "(dimensionless, >= 0).");

@@ -22,6 +22,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <iterator>
 #include <limits>
 #include <optional>
 #include <sstream>
@@ -837,13 +838,9 @@ namespace coshell::driver
                  record.time);
     checkpoint_step(problem, out, run.stage, record.time, run.directory,
                     run.log);
-    // Interactive runs count only the time spent computing, not the
-    // time spent waiting for the next target.
-    if (replies_)
-      reply_step(
-          problem, out, record.time,
-          (record.time - run.start_time) /
-              std::max(computing_s_ + seconds_since(advance_started_), 1e-9));
+    if (interactive_)
+      reply_step(problem, out, record.time,
+                 interactive_->real_time_factor(record.time));
   }
 
   void Scene::finish_dynamic_stage(DynamicStageRun &run, double reached)
@@ -869,34 +866,93 @@ namespace coshell::driver
           "--interactive drives dynamic stages, and this scene has none "
           "(Analysis/Type = dynamic, or a Stage k with Analysis type = "
           "dynamic)");
-    commands_ = &commands;
-    replies_  = &replies;
+    interactive_.emplace();
+    interactive_->commands = &commands;
+    interactive_->replies  = &replies;
+    // The driven obstacles share one input path; the Contact made from
+    // these parameters keeps a handle on it.
+    for (auto &obstacle : contact_.obstacles)
+      if (obstacle.input_direction.norm() > 0)
+      {
+        if (!interactive_->input)
+          interactive_->input = std::make_shared<contact::InputPath>();
+        obstacle.input = interactive_->input;
+      }
+    if (interactive_->input && checkpoint_interval_ > 0)
+      throw std::invalid_argument(
+          "Output/Checkpoint interval: a checkpoint would not hold the "
+          "input of the obstacles with an Input direction, and a restart "
+          "would put them back on their Translation; set it to 0 with "
+          "--interactive");
+  }
+
+  // Interactive runs count only the time spent computing, not the time
+  // spent waiting for the next target.
+  double Scene::InteractiveSession::real_time_factor(double time) const
+  {
+    return (simulated_s + time - advance_from) /
+           std::max(computing_s + seconds_since(advance_started), 1e-9);
   }
 
   namespace
   {
-    /// The next target time of the interactive protocol, or nothing at
-    /// "quit" or the end of the input. Blank and '#' lines are skipped;
-    /// a line that is not one number is answered with an error line.
-    std::optional<double> next_target(std::istream &commands,
-                                      std::ostream &replies)
+    /// A protocol line "t" or "t s": the target time and the input.
+    struct Target
     {
-      std::string line;
-      while (std::getline(commands, line))
-      {
-        line = Utilities::trim(line);
-        if (line.empty() || line[0] == '#')
-          continue;
-        if (line == "quit")
-          return std::nullopt;
-        if (const auto time = io::as_number(line))
-          return *time;
-        replies << "error cannot read '" << line << "' as a time in s"
-                << std::endl;
-      }
-      return std::nullopt;
+      double                time;
+      std::optional<double> input;
+    };
+
+    std::optional<Target> parse_target(const std::string &line)
+    {
+      std::istringstream       words(line);
+      std::vector<std::string> parts{std::istream_iterator<std::string>(words),
+                                     std::istream_iterator<std::string>()};
+      if (parts.empty() || parts.size() > 2)
+        return std::nullopt;
+      const auto time = io::as_number(parts[0]);
+      if (!time)
+        return std::nullopt;
+      if (parts.size() == 1)
+        return Target{*time, std::nullopt};
+      const auto input = io::as_number(parts[1]);
+      if (!input)
+        return std::nullopt;
+      return Target{*time, *input};
     }
   } // namespace
+
+  std::optional<double> Scene::InteractiveSession::next_target(double now)
+  {
+    std::string line;
+    while (std::getline(*commands, line))
+    {
+      line = Utilities::trim(line);
+      if (line.empty() || line[0] == '#')
+        continue;
+      if (line == "quit")
+        return std::nullopt;
+      const auto target = parse_target(line);
+      if (!target)
+        *replies << "error cannot read '" << line
+                 << "' as a time in s, or a time and an input" << std::endl;
+      else if (target->input && !input)
+        *replies << "error '" << line
+                 << "': no obstacle takes input (Contact/Obstacle k/Input "
+                    "direction)"
+                 << std::endl;
+      else if (target->input && !(target->time > now))
+        *replies << "error '" << line << "': an input is for a time after "
+                 << "the present, " << now << " s" << std::endl;
+      else
+      {
+        if (target->input)
+          input->append(now, target->time, *target->input);
+        return target->time;
+      }
+    }
+    return std::nullopt;
+  }
 
   double Scene::advance_dynamic_stage(
       model::ShellProblem                               &problem,
@@ -908,32 +964,45 @@ namespace coshell::driver
       const solvers::TimeIntegration::StepCheck         &check,
       std::ostream                                      &log)
   {
-    computing_s_       = 0;
+    if (!interactive_)
+    {
+      time_integration_.run(problem, linear_solver_, path_following_.newton(),
+                            start, end, step, on_step, on_iteration, log,
+                            &carry_, check);
+      return end;
+    }
+    auto      &session = *interactive_;
     const auto advance = [&](double from, double to)
     {
-      advance_started_ = std::chrono::steady_clock::now();
+      session.advance_from    = from;
+      session.advance_started = std::chrono::steady_clock::now();
       time_integration_.run(problem, linear_solver_, path_following_.newton(),
                             from, to, step, on_step, on_iteration, log, &carry_,
                             check);
-      computing_s_ += seconds_since(advance_started_);
+      session.computing_s += seconds_since(session.advance_started);
+      session.simulated_s += to - from;
     };
-    if (!commands_)
-    {
-      advance(start, end);
-      return end;
-    }
     double now = start;
-    while (now < end)
+    while (now < end && !session.ended)
     {
-      const auto target = next_target(*commands_, *replies_);
-      if (!target)
+      if (!session.target)
+        session.target = session.next_target(now);
+      if (!session.target)
+      {
+        session.ended = true;
         break;
-      const double to = std::min(*target, end);
+      }
+      const double to = std::min(*session.target, end);
       if (to > now)
         advance(now, to);
       now = std::max(now, to);
-      *replies_ << "done " << now << std::endl;
+      if (*session.target <= now)
+      {
+        *session.replies << "done " << now << std::endl;
+        session.target.reset();
+      }
     }
+    session.reached = now;
     return now;
   }
 
@@ -942,7 +1011,7 @@ namespace coshell::driver
                          double                     time,
                          double                     real_time_factor) const
   {
-    auto &reply = *replies_;
+    auto &reply = *interactive_->replies;
     reply << "step " << out.step << ' ' << time;
     if (out.contact)
       for (const auto &load : out.contact->obstacle_loads())
@@ -1057,11 +1126,19 @@ namespace coshell::driver
     double start_time = 0;
     for (const Stage &stage : stages_.list())
     {
+      if (interactive_ && interactive_->ended)
+        break; // "quit": the stages after it do not start
       if (!skipped_by_restart(stage.number))
         run_stage(stage, model, state, start_time, out, result, directory, log);
       start_time += stage.duration;
     }
-    finish_staged_outputs(model, state, start_time, out, result, directory);
+    if (interactive_ && interactive_->target) // past the scene's end
+      *interactive_->replies << "done " << start_time << std::endl;
+    finish_staged_outputs(model, state,
+                          interactive_ && interactive_->ended
+                              ? interactive_->reached
+                              : start_time,
+                          out, result, directory);
     return result;
   }
 

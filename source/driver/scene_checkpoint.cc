@@ -147,6 +147,13 @@ namespace coshell::driver
         time >= next_checkpoint_time_ - 1e-9 * checkpoint_interval_;
     if (!due && signal == 0)
       return;
+    // An obstacle driven by --interactive input is where the input put it,
+    // which a checkpoint does not hold: a restart would move it back.
+    if (interactive_ && interactive_->input)
+      throw Interrupted("stopped by signal " + std::to_string(signal) +
+                        " at t = " + std::to_string(time) +
+                        " s; no checkpoint written: it would not hold the "
+                        "obstacles' interactive input");
     // Vectors go by mesh vertex: the DoF numbering depends on the ranks.
     const model::ShellModel &model = problem.model();
     io::Checkpoint           c;

@@ -6,7 +6,10 @@ replies. With --history-rows N the session is run again with Output/Steps
 between history rows = N: its time_history.csv must hold exactly the
 full run's rows of every N-th step and of the last one (the run ends at
 'quit', between two such steps), and its summary's quantities of
-interest must be the full run's."""
+interest must be the full run's. With --case, each given session is run
+instead (on a scene of several stages: a target past a stage's end
+carries on into the next, 'quit' ends the run there, and a target past
+the scene's end is answered at its end)."""
 import argparse
 import json
 import os
@@ -27,49 +30,85 @@ def main():
     parser.add_argument("--history-rows", type=int, default=0,
                         help="also run with Output/Steps between history "
                              "rows = N and compare the histories")
+    parser.add_argument("--case", nargs=3, action="append",
+                        metavar=("LINES", "DONE", "END"),
+                        help="a session (its lines separated by spaces), "
+                        "the times its 'done' lines must give and the time "
+                        "(s) the run must end at")
+    parser.add_argument("--set", action="append", default=[],
+                        help="a setting passed on to coshell")
     args = parser.parse_args()
     if os.path.isdir(args.output):
         shutil.rmtree(args.output)
-    run = run_session(args.coshell, args.prm, args.output)
+    if args.case:
+        failures = []
+        for k, (lines, done, end) in enumerate(args.case):
+            session = "\n".join(lines.split()) + "\n"
+            output = os.path.join(args.output, f"session_{k + 1}")
+            print(f"session {k + 1}: {lines!r}")
+            run = run_session(args.coshell, args.prm, output, args.set,
+                              session)
+            failures += [f"session {k + 1}: {failure}" for failure in
+                         session_failures(run, output, args.obstacles,
+                                          done.split(), float(end))]
+        exit_with(failures)
+    run = run_session(args.coshell, args.prm, args.output, args.set)
+    failures = session_failures(run, args.output, args.obstacles,
+                                ["0.1", "0.3", "0.3"], 0.3,
+                                bad_line="not-a-time")
+    if args.history_rows and not failures:
+        n_steps = sum(line.startswith("step ")
+                      for line in run.stdout.splitlines())
+        failures += sparse_history_failures(args, n_steps)
+    exit_with(failures)
+
+
+def session_failures(run, output, n_obstacles, done_times, end,
+                     bad_line=None):
+    """What the replies of one session and its summary.json get wrong:
+    the 'done' lines, the step lines (rising to 'end', each with the
+    time, a force per obstacle, the centroid and a positive real-time
+    factor), the error line for 'bad_line', nothing else on stdout, and
+    the simulated time."""
     lines = run.stdout.splitlines()
     print("\n".join(lines))
-    failures = []
     if run.returncode != 0:
-        failures.append(f"exit status {run.returncode}: {run.stderr[-500:]}")
+        return [f"exit status {run.returncode}: {run.stderr[-500:]}"]
+    failures = []
     steps = [l.split() for l in lines if l.startswith("step ")]
     done = [l for l in lines if l.startswith("done ")]
     errors = [l for l in lines if l.startswith("error ")]
     others = [l for l in lines if not l.split()[0] in ("step", "done", "error")]
     times = [float(s[2]) for s in steps]
-    expected_fields = 3 + args.obstacles + 3 + 1
+    expected_fields = 3 + n_obstacles + 3 + 1
     if others:
         failures.append(f"lines outside the protocol on stdout: {others[:3]}")
-    if done != ["done 0.1", "done 0.3", "done 0.3"]:
-        failures.append(f"done lines {done}, expected 0.1, 0.3, 0.3")
-    if len(errors) != 1 or "not-a-time" not in errors[0]:
+    if done != [f"done {t}" for t in done_times]:
+        failures.append(f"done lines {done}, expected {done_times}")
+    if (len(errors) != (1 if bad_line else 0) or
+            (bad_line and bad_line not in errors[0])):
         failures.append(f"error lines {errors}")
-    if not steps or times != sorted(times) or abs(times[-1] - 0.3) > 1e-12:
-        failures.append(f"step times {times} do not rise to 0.3")
+    rising = all(a < b for a, b in zip(times, times[1:]))
+    if not steps or not rising or abs(times[-1] - end) > 1e-12:
+        failures.append(f"step times {times} do not rise to {end}")
     if any(len(s) != expected_fields for s in steps):
         failures.append(f"a step line has not {expected_fields} fields")
     if steps and not all(float(s[-1]) > 0 for s in steps):
         failures.append("a real-time factor is not positive")
-    with open(os.path.join(args.output, "summary.json")) as f:
+    with open(os.path.join(output, "summary.json")) as f:
         simulated = json.load(f)["simulated_time_s"]
-    if abs(simulated - 0.3) > 1e-12:
-        failures.append(f"summary.json: simulated_time_s {simulated}, not 0.3 "
-                        "('quit' ends the run)")
-    if args.history_rows:
-        failures += sparse_history_failures(args, len(steps))
-    exit_with(failures)
+    if abs(simulated - end) > 1e-12:
+        failures.append(f"summary.json: simulated_time_s {simulated}, not "
+                        f"{end}")
+    return failures
 
 
-def run_session(coshell, prm, output, settings=()):
+def run_session(coshell, prm, output, settings=(), session=SESSION):
     command = [coshell, prm, "--interactive", "--output", output,
                "--set", "Output/Write VTU=false"]
     for setting in settings:
         command += ["--set", setting]
-    return subprocess.run(command, input=SESSION, capture_output=True,
+    return subprocess.run(command, input=session, capture_output=True,
                           text=True)
 
 
@@ -79,7 +118,7 @@ def sparse_history_failures(args, n_steps):
     n = args.history_rows
     output = os.path.join(args.output, f"every_{n}th_row")
     run = run_session(args.coshell, args.prm, output,
-                      [f"Output/Steps between history rows={n}"])
+                      args.set + [f"Output/Steps between history rows={n}"])
     if run.returncode != 0:
         return [f"with every {n}th history row: exit status "
                 f"{run.returncode}: {run.stderr[-500:]}"]

@@ -426,3 +426,31 @@ TEST(ContactAssembly, EdgeEdgeMollifierTangentMatchesFiniteDifferences)
 {
   EXPECT_GT(check_knife_tangent(0.975, 0.01, true), 0u);
 }
+
+// The interactive input path: 0 before any sample, a ramp from the
+// present to each sample, held after the last; a sample appended later
+// leaves the times up to the present where they were.
+TEST(ContactAssembly, InputPathRampsFromThePresentAndKeepsThePast)
+{
+  contact::InputPath path;
+  EXPECT_EQ(path.value(0.5), 0.0);
+  path.append(0.0, 1.0, 2.0);
+  EXPECT_DOUBLE_EQ(path.value(0.25), 0.5);
+  EXPECT_EQ(path.value(1.0), 2.0);
+  EXPECT_EQ(path.value(3.0), 2.0); // held
+  const double held = path.value(1.5);
+  path.append(2.0, 3.0, 4.0); // the run reached t = 2 with the input held
+  EXPECT_EQ(path.value(1.5), held);
+  EXPECT_EQ(path.value(2.0), 2.0);
+  EXPECT_DOUBLE_EQ(path.value(2.5), 3.0);
+  EXPECT_THROW(path.append(3.0, 3.0, 5.0), std::invalid_argument);
+
+  // An obstacle moves by the input along its direction, on top of its
+  // Translation.
+  contact::Obstacle obstacle = plane(0.1, 0);
+  obstacle.input_direction   = dealii::Tensor<1, 3>({0, 0, -0.5});
+  obstacle.input             = std::make_shared<contact::InputPath>(path);
+  const auto moved           = obstacle.positions(2.5);
+  EXPECT_DOUBLE_EQ(moved[4][2], 0.1 - 0.5 * 3.0);
+  EXPECT_DOUBLE_EQ(moved[4][0], 1.1);
+}

@@ -7,11 +7,28 @@
 #include <deal.II/base/point.h>
 
 #include <array>
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace coshell::contact
 {
+  /// A scalar of time given by another program during an --interactive
+  /// run (a haptic device's plunger travel): linear between the samples
+  /// (t, s) received, held after the last one, 0 before any.
+  class InputPath
+  {
+  public:
+    /// s reached at 'time', linearly from where the path is at 'now'
+    /// (the present of the run, after every sample so far). Earlier
+    /// times keep their values: the integrated past does not move.
+    void   append(double now, double time, double value);
+    double value(double time) const;
+
+  private:
+    std::vector<std::pair<double, double>> samples_;
+  };
+
   /// A rigid obstacle: a triangle surface mesh in its reference position,
   /// moved by a rigid motion of time, with a friction coefficient and an
   /// offset added to the shell's half thickness.
@@ -25,6 +42,10 @@ namespace coshell::contact
     double                               offset               = 0; ///< length
     /// Area of the triangles around each vertex, a third of each (length^2).
     std::vector<double> vertex_area;
+    /// Contact/Obstacle k/Input direction: on top of 'motion' the obstacle
+    /// moves by input->value(t) times this vector (zero: not driven).
+    dealii::Tensor<1, 3>             input_direction;
+    std::shared_ptr<const InputPath> input;
 
     /// Vertex positions at time t.
     std::vector<dealii::Point<3>> positions(double time) const;

@@ -88,13 +88,40 @@ namespace coshell::driver
     unsigned int                n_modes_     = 6;
     double                      modal_shift_ = 0;
     contact::ContactParameters  contact_;
-    std::istream               *commands_ = nullptr;
-    std::ostream               *replies_  = nullptr;
-    /// Wall time of the current dynamic stage's integration so far.
-    double                                computing_s_ = 0;
-    std::chrono::steady_clock::time_point advance_started_;
-    io::VtuOutput                         output_;
-    std::vector<io::LevelResult>          levels_;
+    /// An --interactive session, which spans the scene's dynamic stages:
+    /// a target past a stage's end carries on into the next dynamic
+    /// stage, and "quit" or the end of the input ends the run.
+    struct InteractiveSession
+    {
+      std::istream *commands = nullptr;
+      std::ostream *replies  = nullptr;
+      /// The input of the obstacles with an Input direction (none: no
+      /// obstacle takes input).
+      std::shared_ptr<contact::InputPath> input;
+      /// The target time (s) read and not reached yet.
+      std::optional<double> target;
+      /// "quit" or the end of the input was read: no later stage runs.
+      bool ended = false;
+      /// The simulated time (s) reached so far.
+      double reached = 0;
+      /// Simulated and wall time (s) of the integrations finished so far,
+      /// the start of the current one and its wall clock.
+      double                                simulated_s = 0, computing_s = 0;
+      double                                advance_from = 0;
+      std::chrono::steady_clock::time_point advance_started;
+
+      /// Simulated over computing time of the session up to 'time' of the
+      /// current integration; waiting for input is not counted.
+      double real_time_factor(double time) const;
+      /// The next target time, its input (if any) appended to the path
+      /// from 'now'; nothing at "quit" or the end of the input. Blank and
+      /// '#' lines are skipped; a line that is not a target is answered
+      /// with an error line.
+      std::optional<double> next_target(double now);
+    };
+    std::optional<InteractiveSession> interactive_;
+    io::VtuOutput                     output_;
+    std::vector<io::LevelResult>      levels_;
     /// Output/Checkpoint interval, s of simulated time (0: none), the
     /// time of the next checkpoint, and the checkpoint to resume from.
     double                        checkpoint_interval_  = 0;
@@ -219,8 +246,9 @@ namespace coshell::driver
     bool skipped_by_restart(unsigned int stage_number) const;
     /// Runs the time integration of a dynamic stage from 'start' to
     /// 'end', or, when driven interactively, to each target read until
-    /// the stage's end, "quit" or the end of the input; returns the time
-    /// reached. 'check' judges each converged step (the energy guard).
+    /// the stage's end, "quit" or the end of the input (a target past the
+    /// end is kept for the next stage); returns the time reached. 'check'
+    /// judges each converged step (the energy guard).
     double advance_dynamic_stage(
         model::ShellProblem                               &problem,
         double                                             start,
