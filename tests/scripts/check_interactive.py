@@ -21,12 +21,21 @@ from scene_runner import exit_with, read_rows
 SESSION = "0.1\n# a comment\nnot-a-time\n0.3\n0.2\nquit\n0.5\n"
 
 
-def main():
+def session_parser():
+    """The arguments every interactive check takes: the binary, the
+    scene, the output directory, its number of obstacles and settings."""
     parser = argparse.ArgumentParser()
     parser.add_argument("--coshell", required=True)
     parser.add_argument("--prm", required=True)
     parser.add_argument("--output", required=True)
     parser.add_argument("--obstacles", type=int, required=True)
+    parser.add_argument("--set", action="append", default=[],
+                        help="a setting passed on to coshell")
+    return parser
+
+
+def main():
+    parser = session_parser()
     parser.add_argument("--history-rows", type=int, default=0,
                         help="also run with Output/Steps between history "
                              "rows = N and compare the histories")
@@ -35,8 +44,6 @@ def main():
                         help="a session (its lines separated by spaces), "
                         "the times its 'done' lines must give and the time "
                         "(s) the run must end at")
-    parser.add_argument("--set", action="append", default=[],
-                        help="a setting passed on to coshell")
     args = parser.parse_args()
     if os.path.isdir(args.output):
         shutil.rmtree(args.output)

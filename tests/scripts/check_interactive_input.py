@@ -7,22 +7,15 @@ input path is linear between its samples, as the prescribed motion is).
 Then the protocol's refusals: an input for a time not after the present,
 a line that is not 't' or 't s', and an input when no obstacle takes
 one, each answered with an error line while the run goes on."""
-import argparse
 import os
 import shutil
 
-from check_interactive import run_session, session_failures
+from check_interactive import run_session, session_failures, session_parser
 from scene_runner import exit_with, read_rows
 
 
 def main():
-    parser = argparse.ArgumentParser()
-    parser.add_argument("--coshell", required=True)
-    parser.add_argument("--prm", required=True)
-    parser.add_argument("--output", required=True)
-    parser.add_argument("--obstacles", type=int, required=True)
-    parser.add_argument("--set", action="append", default=[],
-                        help="a setting of both sessions")
+    parser = session_parser()  # its --set: a setting of every session
     parser.add_argument("--prescribed", action="append", default=[],
                         help="a setting of the prescribed session")
     parser.add_argument("--driven", action="append", default=[],
