@@ -6,7 +6,7 @@
 SetFactory("OpenCASCADE");
 DefineConstant[
   refinement_level = 0,
-  clamp_radius = 5.0,      // mm; the prm may subtract half the haptic thickness
+  clamp_radius = 5.0,      // mm; the prm adds half the haptic thickness
   clamp_half_angle = 50,   // degrees
   clamp_height = 2.0,      // mm
   clamp_mesh_size = 0.35   // mm
