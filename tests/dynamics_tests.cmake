@@ -337,3 +337,16 @@ add_test(NAME dynamics.interactive_across_stages
           --case "0.1 quit 0.45" "0.1" 0.1
           --case "0.7 0.8" "0.5" 0.5)
 set_tests_properties(dynamics.interactive_across_stages PROPERTIES LABELS dynamics)
+# A static stage runs whole, so the session decides before it: 'quit' as
+# the first line of the cantilever's session (a static stage, then the
+# release) ends the run with no stage run (no reply, no Newton
+# iteration).
+add_test(NAME dynamics.interactive_quit_before_static_stage
+  COMMAND ${COSHELL_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_interactive.py
+          --coshell $<TARGET_FILE:coshell> --prm ${COSHELL_PRM}/${cantilever}
+          --output ${CMAKE_CURRENT_BINARY_DIR}/output/dynamics.interactive_quit_before_static_stage
+          --obstacles 0 --case "quit 0.5" "" 0)
+set_tests_properties(dynamics.interactive_quit_before_static_stage PROPERTIES LABELS dynamics)
+coshell_bad_input_test(interactive_refinement_study
+  "--interactive drives one run: Mesh/Refinement levels lists 2 levels"
+  ${COSHELL_PRM}/${free_flying} --interactive --set "Mesh/Refinement levels=0, 1")

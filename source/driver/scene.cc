@@ -866,6 +866,11 @@ namespace coshell::driver
           "--interactive drives dynamic stages, and this scene has none "
           "(Analysis/Type = dynamic, or a Stage k with Analysis type = "
           "dynamic)");
+    // Every level would read the same input, which the first one uses up.
+    if (mesh_.refinement_levels.size() > 1)
+      throw std::invalid_argument(
+          "--interactive drives one run: Mesh/Refinement levels lists " +
+          std::to_string(mesh_.refinement_levels.size()) + " levels; give one");
     interactive_.emplace();
     interactive_->commands = &commands;
     interactive_->replies  = &replies;
@@ -884,6 +889,21 @@ namespace coshell::driver
           "input of the obstacles with an Input direction, and a restart "
           "would put them back on their Translation; set it to 0 with "
           "--interactive");
+  }
+
+  // A static stage runs whole, so its decision comes before it: a "quit"
+  // after a target at the end of the dynamic stage before it ends the run
+  // there instead of after the static stage.
+  void Scene::InteractiveSession::read_ahead(double now)
+  {
+    if (ended || target)
+      return;
+    target = next_target(now);
+    if (!target)
+    {
+      ended   = true;
+      reached = now;
+    }
   }
 
   // Interactive runs count only the time spent computing, not the time
@@ -910,13 +930,15 @@ namespace coshell::driver
                                      std::istream_iterator<std::string>()};
       if (parts.empty() || parts.size() > 2)
         return std::nullopt;
+      // strtod reads "nan" and "inf" too: a target that is never reached
+      // or an obstacle sent to infinity.
       const auto time = io::as_number(parts[0]);
-      if (!time)
+      if (!time || !std::isfinite(*time))
         return std::nullopt;
       if (parts.size() == 1)
         return Target{*time, std::nullopt};
       const auto input = io::as_number(parts[1]);
-      if (!input)
+      if (!input || !std::isfinite(*input))
         return std::nullopt;
       return Target{*time, *input};
     }
@@ -935,7 +957,8 @@ namespace coshell::driver
       const auto target = parse_target(line);
       if (!target)
         *replies << "error cannot read '" << line
-                 << "' as a time in s, or a time and an input" << std::endl;
+                 << "' as a finite time in s, or a time and an input"
+                 << std::endl;
       else if (target->input && !input)
         *replies << "error '" << line
                  << "': no obstacle takes input (Contact/Obstacle k/Input "
@@ -1126,6 +1149,8 @@ namespace coshell::driver
     double start_time = 0;
     for (const Stage &stage : stages_.list())
     {
+      if (interactive_ && stage.analysis != "dynamic")
+        interactive_->read_ahead(start_time);
       if (interactive_ && interactive_->ended)
         break; // "quit": the stages after it do not start
       if (!skipped_by_restart(stage.number))

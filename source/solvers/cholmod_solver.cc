@@ -86,9 +86,13 @@ namespace coshell::solvers
         d.common.status == CHOLMOD_NOT_POSDEF)
       throw std::runtime_error(
           "CHOLMOD could not factorize the stiffness matrix (status " +
-          std::to_string(d.common.status) +
-          "): it is not symmetric positive definite. Use Linear solver/"
-          "Method = umfpack for indefinite or non-symmetric systems.");
+          std::to_string(d.common.status) + "): " +
+          (d.common.status == CHOLMOD_NOT_POSDEF
+               ? "it is not symmetric positive definite. Use Linear solver/"
+                 "Method = umfpack for indefinite or non-symmetric systems."
+           : d.common.status == CHOLMOD_OUT_OF_MEMORY
+               ? "out of memory."
+               : "an error of CHOLMOD's (cholmod.h lists its codes)."));
   }
 
   bool CholmodSolver::has_factors_of_size(const unsigned int n_rows) const
@@ -112,7 +116,8 @@ namespace coshell::solvers
     cholmod_dense *solution =
         cholmod_solve(CHOLMOD_A, d.factor, &rhs, &d.common);
     if (!solution)
-      throw std::runtime_error("CHOLMOD solve failed");
+      throw std::runtime_error("CHOLMOD solve failed (status " +
+                               std::to_string(d.common.status) + ")");
     const double *values = static_cast<const double *>(solution->x);
     std::copy(values, values + b.size(), x.begin());
     cholmod_free_dense(&solution, &d.common);

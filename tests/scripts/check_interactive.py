@@ -81,6 +81,8 @@ def session_failures(run, output, n_obstacles, done_times, end,
     print("\n".join(lines))
     if run.returncode != 0:
         return [f"exit status {run.returncode}: {run.stderr[-500:]}"]
+    if not done_times:  # ended before any stage: nothing may have run
+        return nothing_run_failures(lines, output)
     failures = []
     steps = [l.split() for l in lines if l.startswith("step ")]
     done = [l for l in lines if l.startswith("done ")]
@@ -107,6 +109,19 @@ def session_failures(run, output, n_obstacles, done_times, end,
     if abs(simulated - end) > 1e-12:
         failures.append(f"summary.json: simulated_time_s {simulated}, not "
                         f"{end}")
+    return failures
+
+
+def nothing_run_failures(lines, output):
+    """A session that ends before its first target: no reply, no step
+    and no Newton iteration (a static stage first does not run either)."""
+    with open(os.path.join(output, "summary.json")) as f:
+        iterations = json.load(f).get("newton_iterations", 0)
+    print(f"summary.json: {iterations} Newton iterations")
+    failures = [f"replies {lines[:3]} to a session with no target"] if lines \
+        else []
+    if iterations != 0:
+        failures.append(f"{iterations} Newton iterations: a stage ran")
     return failures
 
 

@@ -5,8 +5,9 @@ prescribed by its Translation. The two sessions must give the same
 time_history.csv and contact_forces.csv to round-off (an invariance: the
 input path is linear between its samples, as the prescribed motion is).
 Then the protocol's refusals: an input for a time not after the present,
-a line that is not 't' or 't s', and an input when no obstacle takes
-one, each answered with an error line while the run goes on."""
+a line that is not 't' or 't s' with finite numbers, and an input when
+no obstacle takes one, each answered with an error line while the run
+goes on."""
 import os
 import shutil
 
@@ -83,9 +84,10 @@ def refusal_failures(args, targets, inputs):
     cases = [
         ("driven", args.driven,
          [first, f"{float(targets[0]) / 2} {inputs[0]}", f"{targets[1]} x",
-          targets[1], "quit"],
+          "nan", f"{targets[1]} inf", targets[1], "quit"],
          ["an input is for a time after the present",
-          f"cannot read '{targets[1]} x'"]),
+          f"cannot read '{targets[1]} x'", "cannot read 'nan'",
+          f"cannot read '{targets[1]} inf'"]),
         ("prescribed", args.prescribed, [first, targets[1], "quit"],
          ["no obstacle takes input"])]
     for k, (name, settings, lines, errors) in enumerate(cases):
