@@ -891,9 +891,9 @@ namespace coshell::driver
           "--interactive");
   }
 
-  // A static stage runs whole, so its decision comes before it: a "quit"
-  // after a target at the end of the dynamic stage before it ends the run
-  // there instead of after the static stage.
+  // Also called before a static stage, which runs whole, so its decision
+  // comes before it: a "quit" after a target at the end of the dynamic
+  // stage before it ends the run there instead of after the static stage.
   void Scene::InteractiveSession::read_ahead(double now)
   {
     if (ended || target)
@@ -1008,13 +1008,9 @@ namespace coshell::driver
     double now = start;
     while (now < end && !session.ended)
     {
-      if (!session.target)
-        session.target = session.next_target(now);
-      if (!session.target)
-      {
-        session.ended = true;
+      session.read_ahead(now);
+      if (session.ended)
         break;
-      }
       const double to = std::min(*session.target, end);
       if (to > now)
         advance(now, to);

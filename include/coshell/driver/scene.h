@@ -118,8 +118,8 @@ namespace coshell::driver
       /// '#' lines are skipped; a line that is not a target is answered
       /// with an error line.
       std::optional<double> next_target(double now);
-      /// Before a static stage at 'now': the next target, if none is
-      /// pending; "quit" or the end of the input ends the session there.
+      /// At 'now': the next target, if none is pending; "quit" or the end
+      /// of the input ends the session there.
       void read_ahead(double now);
     };
     std::optional<InteractiveSession> interactive_;
