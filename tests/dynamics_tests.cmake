@@ -337,6 +337,41 @@ add_test(NAME dynamics.interactive_across_stages
           --case "0.1 quit 0.45" "0.1" 0.1
           --case "0.7 0.8" "0.5" 0.5)
 set_tests_properties(dynamics.interactive_across_stages PROPERTIES LABELS dynamics)
+# A static stage between two dynamic ones (the cantilever under its
+# pressure: 0.2 s of motion from rest, then the static equilibrium, then
+# 0.2 s more under the same load). An equilibrium is a state at rest, so
+# the last stage must stay at rest: over its steps tip_w moves by at most
+# 1e-6 of itself and the kinetic energy changes by at most 1e-15 (1e-9 of
+# the first stage's 1.05e-6). Before the static stage left the shell at
+# rest, the first stage's velocities carried over it and tip_w moved by
+# 34 %.
+set(dynamic_static_dynamic
+    --set "Stage 1/Analysis type=dynamic" --set "Stage 1/Duration=0.2"
+    --set "Stage 2/Analysis type=nonlinear static" --set "Stage 2/Duration=1"
+    --set "Stage 2/Load factor=1"
+    --set "Stage 3/Analysis type=dynamic" --set "Stage 3/Duration=0.2"
+    --set "Stage 3/Load factor=1"
+    --set "Time integration/Time step=0.02"
+    --set "Time integration/Maximum time step=0.02")
+coshell_dynamics_test(dynamics.static_stage_leaves_the_shell_at_rest ${cantilever}
+  ARGS ${dynamic_static_dynamic} --stage 3 --drift tip_w 1e-6 initial
+       --drift kinetic_energy 1e-15 1)
+# The interactive protocol over the same three stages: a target in the
+# last stage carries on over the static stage (which runs whole) and is
+# reached there; 'quit' at the first stage's end ends the run there; a
+# target inside the static stage is answered at its end, 1.2 s; a target
+# past the end is answered at 1.4 s. summary.json's simulated time
+# counts the dynamic stages only (0.3 s for a run to 1.3 s).
+add_test(NAME dynamics.interactive_over_static_stage
+  COMMAND ${COSHELL_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_interactive.py
+          --coshell $<TARGET_FILE:coshell> --prm ${COSHELL_PRM}/${cantilever}
+          --output ${CMAKE_CURRENT_BINARY_DIR}/output/dynamics.interactive_over_static_stage
+          --obstacles 0 ${dynamic_static_dynamic} --static-stage 0.2 1
+          --case "0.1 1.3 quit 1.35" "0.1 1.3" 1.3
+          --case "0.2 quit 1.3" "0.2" 0.2
+          --case "0.7 1.3 quit" "1.2 1.3" 1.3
+          --case "1.5" "1.4" 1.4)
+set_tests_properties(dynamics.interactive_over_static_stage PROPERTIES LABELS dynamics)
 # A static stage runs whole, so the session decides before it: 'quit' as
 # the first line of the cantilever's session (a static stage, then the
 # release) ends the run with no stage run (no reply, no Newton

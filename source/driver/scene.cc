@@ -1033,8 +1033,18 @@ namespace coshell::driver
     auto &reply = *interactive_->replies;
     reply << "step " << out.step << ' ' << time;
     if (out.contact)
-      for (const auto &load : out.contact->obstacle_loads())
-        reply << ' ' << load.force.norm();
+      for (unsigned int o = 0; o < out.contact->obstacles().size(); ++o)
+      {
+        // A device renders the force along its own axis, with its sign:
+        // the magnitude counts the force across the axis too, and cannot
+        // tell a shell pushing the tool back from one dragging it along
+        // (friction).
+        const auto &force     = out.contact->obstacle_loads()[o].force;
+        const auto &direction = out.contact->obstacles()[o].input_direction;
+        reply << ' '
+              << (direction.norm() > 0 ? force * direction / direction.norm()
+                                       : force.norm());
+      }
     const auto &model = problem.model();
     Point<3>    centroid;
     unsigned    n = 0;
@@ -1108,7 +1118,8 @@ namespace coshell::driver
                                     std::ostream            &log)
   {
     io::LevelResult result;
-    const bool      finite =
+    dynamic_stage_ran_ = false;
+    const bool finite =
         element_.formulation == model::Formulation::corotational;
     model::ShellState state(model, finite);
     if (has_dynamic_stage())
@@ -1227,8 +1238,28 @@ namespace coshell::driver
       run_dynamic_stage(run);
     }
     else
+    {
       run_static_stage(stage, problem, out, result, directory, log);
+      if (dynamic_stage_ran_)
+        settle_at_rest(state);
+    }
+    if (dynamic)
+      dynamic_stage_ran_ = true;
     result.wall_time_s.solve += seconds_since(phase);
+  }
+
+  // An equilibrium is a state at rest: a dynamic stage after a static one
+  // must not start from the velocities a dynamic stage before it left (the
+  // shell would move off a configuration they do not belong to). The
+  // initial velocities, before any dynamic stage, are not touched. The
+  // next dynamic stage makes its acceleration consistent anyway
+  // (generalized alpha); zeroing it keeps a stale inertia force out of the
+  // reactions read at that stage's start.
+  void Scene::settle_at_rest(model::ShellState &state)
+  {
+    state.velocity()     = 0;
+    state.acceleration() = 0;
+    state.save();
   }
 
   void Scene::finish_staged_outputs(const model::ShellModel &model,

@@ -93,7 +93,9 @@ namespace coshell::driver
       prm.declare_entry("Analysis type", "none",
                         Patterns::Selection("none|nonlinear static|dynamic"),
                         "none: no such stage. Stages run in order, the "
-                        "configuration (and velocities) carried over.");
+                        "configuration (and velocities) carried over; a "
+                        "static stage after a dynamic one leaves the shell "
+                        "at rest (its equilibrium has no velocities).");
       prm.declare_entry("Duration", "1", Patterns::Double(0),
                         "Length of the stage, s (in statics a pseudo-time "
                         "that drives the load factor and the motions); > 0.");

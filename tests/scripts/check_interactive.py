@@ -9,7 +9,9 @@ full run's rows of every N-th step and of the last one (the run ends at
 interest must be the full run's. With --case, each given session is run
 instead (on a scene of several stages: a target past a stage's end
 carries on into the next, 'quit' ends the run there, and a target past
-the scene's end is answered at its end)."""
+the scene's end is answered at its end); --static-stage, with --case,
+gives a static stage's pseudo-time, which the simulated time in
+summary.json does not count."""
 import argparse
 import json
 import os
@@ -44,6 +46,10 @@ def main():
                         help="a session (its lines separated by spaces), "
                         "the times its 'done' lines must give and the time "
                         "(s) the run must end at")
+    parser.add_argument("--static-stage", nargs=2, type=float,
+                        metavar=("START", "DURATION"),
+                        help="a static stage's pseudo-time (s), which "
+                        "summary.json's simulated time does not count")
     args = parser.parse_args()
     if os.path.isdir(args.output):
         shutil.rmtree(args.output)
@@ -57,7 +63,8 @@ def main():
                               session)
             failures += [f"session {k + 1}: {failure}" for failure in
                          session_failures(run, output, args.obstacles,
-                                          done.split(), float(end))]
+                                          done.split(), float(end),
+                                          static_stage=args.static_stage)]
         exit_with(failures)
     run = run_session(args.coshell, args.prm, args.output, args.set)
     failures = session_failures(run, args.output, args.obstacles,
@@ -71,12 +78,13 @@ def main():
 
 
 def session_failures(run, output, n_obstacles, done_times, end,
-                     bad_line=None):
+                     bad_line=None, static_stage=None):
     """What the replies of one session and its summary.json get wrong:
     the 'done' lines, the step lines (rising to 'end', each with the
     time, a force per obstacle, the centroid and a positive real-time
     factor), the error line for 'bad_line', nothing else on stdout, and
-    the simulated time."""
+    the simulated time (up to 'end', less the part of 'static_stage',
+    (start, duration), before it)."""
     lines = run.stdout.splitlines()
     print("\n".join(lines))
     if run.returncode != 0:
@@ -104,11 +112,15 @@ def session_failures(run, output, n_obstacles, done_times, end,
         failures.append(f"a step line has not {expected_fields} fields")
     if steps and not all(float(s[-1]) > 0 for s in steps):
         failures.append("a real-time factor is not positive")
+    expected = end
+    if static_stage:
+        start, duration = static_stage
+        expected -= max(0.0, min(end, start + duration) - start)
     with open(os.path.join(output, "summary.json")) as f:
         simulated = json.load(f)["simulated_time_s"]
-    if abs(simulated - end) > 1e-12:
+    if abs(simulated - expected) > 1e-12:
         failures.append(f"summary.json: simulated_time_s {simulated}, not "
-                        f"{end}")
+                        f"{expected}")
     return failures
 
 
