@@ -146,11 +146,11 @@ namespace coshell::driver
     io::LevelResult solve_linear(const model::ShellModel &model,
                                  const std::string       &directory,
                                  std::ostream            &log);
-    /// Runs the stages (nonlinear static or dynamic) in order, carrying
-    /// the configuration over.
     /// After a static stage that follows a dynamic one: velocities and
     /// accelerations zero, saved.
-    static void     settle_at_rest(model::ShellState &state);
+    static void settle_at_rest(model::ShellState &state);
+    /// Runs the stages (nonlinear static or dynamic) in order, carrying
+    /// the configuration over.
     io::LevelResult run_stages(const model::ShellModel &model,
                                const std::string       &directory,
                                std::ostream            &log);
