@@ -64,12 +64,13 @@ def main():
             failures += [f"session {k + 1}: {failure}" for failure in
                          session_failures(run, output, args.obstacles,
                                           done.split(), float(end),
-                                          static_stage=args.static_stage)]
+                                          static_stage=args.static_stage,
+                                          settings=args.set)]
         exit_with(failures)
     run = run_session(args.coshell, args.prm, args.output, args.set)
     failures = session_failures(run, args.output, args.obstacles,
                                 ["0.1", "0.3", "0.3"], 0.3,
-                                bad_line="not-a-time")
+                                bad_line="not-a-time", settings=args.set)
     if args.history_rows and not failures:
         n_steps = sum(line.startswith("step ")
                       for line in run.stdout.splitlines())
@@ -78,13 +79,15 @@ def main():
 
 
 def session_failures(run, output, n_obstacles, done_times, end,
-                     bad_line=None, static_stage=None):
+                     bad_line=None, static_stage=None, settings=()):
     """What the replies of one session and its summary.json get wrong:
     the 'done' lines, the step lines (rising to 'end', each with the
-    time, a force per obstacle, the centroid and a positive real-time
-    factor), the error line for 'bad_line', nothing else on stdout, and
-    the simulated time (up to 'end', less the part of 'static_stage',
-    (start, duration), before it)."""
+    time, a force per obstacle as contact_forces.csv gives it, the
+    centroid and a positive real-time factor), the error line for
+    'bad_line', nothing else on stdout, and the simulated time (up to
+    'end', less the part of 'static_stage', (start, duration), before
+    it). 'settings' are the session's, for the obstacles' input
+    directions."""
     lines = run.stdout.splitlines()
     print("\n".join(lines))
     if run.returncode != 0:
@@ -112,6 +115,9 @@ def session_failures(run, output, n_obstacles, done_times, end,
         failures.append(f"a step line has not {expected_fields} fields")
     if steps and not all(float(s[-1]) > 0 for s in steps):
         failures.append("a real-time factor is not positive")
+    if n_obstacles and steps:
+        failures += step_force_failures(steps, output,
+                                        input_directions(settings))
     expected = end
     if static_stage:
         start, duration = static_stage
@@ -122,6 +128,53 @@ def session_failures(run, output, n_obstacles, done_times, end,
         failures.append(f"summary.json: simulated_time_s {simulated}, not "
                         f"{expected}")
     return failures
+
+
+def input_directions(settings):
+    """Obstacle number -> unit vector of its 'Contact/Obstacle k/Input
+    direction' among the settings."""
+    directions = {}
+    for setting in settings:
+        key, _, value = setting.partition("=")
+        words = key.strip().split("/")
+        if (len(words) == 3 and words[0] == "Contact" and
+                words[2] == "Input direction"):
+            vector = [float(x) for x in value.split(",")]
+            norm = sum(x * x for x in vector) ** 0.5
+            directions[int(words[1].split()[-1])] = [x / norm for x in vector]
+    return directions
+
+
+def step_force_failures(steps, output, directions):
+    """Each step line's force per obstacle against that step's rows of
+    contact_forces.csv: the magnitude, or for an obstacle with an input
+    direction the signed component along it, to the line's 6 significant
+    digits. Steps without rows are skipped; some must have them."""
+    rows = {}
+    for row in read_rows(os.path.join(output, "contact_forces.csv")):
+        obstacle = int(float(row["obstacle"]))
+        if obstacle > 0:  # 0: self contact, no net force
+            rows[(int(float(row["step"])), obstacle)] = [
+                float(row[c]) for c in ("fx", "fy", "fz")]
+    failures, checked = [], 0
+    for fields in steps:
+        for k, printed in enumerate(fields[3:-4], start=1):
+            vector = rows.get((int(fields[1]), k))
+            if vector is None:
+                continue
+            direction = directions.get(k)
+            expected = (sum(f * d for f, d in zip(vector, direction))
+                        if direction else sum(f * f for f in vector) ** 0.5)
+            checked += 1
+            if abs(float(printed) - expected) > 1e-5 * abs(expected) + 1e-12:
+                failures.append(f"step {fields[1]}, obstacle {k}: force "
+                                f"{printed} printed, {expected} in "
+                                "contact_forces.csv")
+    print(f"step lines' forces: {checked} checked against "
+          f"contact_forces.csv, {len(failures)} differ")
+    if not checked:
+        failures.append("no step line's force has a contact_forces.csv row")
+    return failures[:5]
 
 
 def nothing_run_failures(lines, output):
