@@ -17,6 +17,7 @@
 #include <coshell/solvers/modal_analysis.h>
 #include <coshell/solvers/parallel_environment.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -1118,8 +1119,7 @@ namespace coshell::driver
                                     std::ostream            &log)
   {
     io::LevelResult result;
-    dynamic_stage_ran_ = false;
-    const bool finite =
+    const bool      finite =
         element_.formulation == model::Formulation::corotational;
     model::ShellState state(model, finite);
     if (has_dynamic_stage())
@@ -1197,6 +1197,36 @@ namespace coshell::driver
     return contact;
   }
 
+  namespace
+  {
+    // A restart runs no stage before its checkpoint's, which is dynamic,
+    // so a static stage that runs after one has run after a dynamic stage
+    // exactly when one comes before it in the list.
+    bool follows_a_dynamic_stage(const std::vector<Stage> &stages,
+                                 const Stage              &stage)
+    {
+      return std::any_of(stages.begin(), stages.end(),
+                         [&](const Stage &earlier) {
+                           return earlier.number < stage.number &&
+                                  earlier.analysis == "dynamic";
+                         });
+    }
+
+    // An equilibrium is a state at rest: a dynamic stage after a static
+    // one must not start from the velocities a dynamic stage before it
+    // left (the shell would move off a configuration they do not belong
+    // to). The initial velocities, before any dynamic stage, are not
+    // touched. The next dynamic stage makes its acceleration consistent
+    // anyway (generalized alpha); zeroing it keeps a stale inertia force
+    // out of the reactions read at that stage's start.
+    void settle_at_rest(model::ShellState &state)
+    {
+      state.velocity()     = 0;
+      state.acceleration() = 0;
+      state.save();
+    }
+  } // namespace
+
   void Scene::run_stage(const Stage             &stage,
                         const model::ShellModel &model,
                         model::ShellState       &state,
@@ -1240,26 +1270,10 @@ namespace coshell::driver
     else
     {
       run_static_stage(stage, problem, out, result, directory, log);
-      if (dynamic_stage_ran_)
+      if (follows_a_dynamic_stage(stages_.list(), stage))
         settle_at_rest(state);
     }
-    if (dynamic)
-      dynamic_stage_ran_ = true;
     result.wall_time_s.solve += seconds_since(phase);
-  }
-
-  // An equilibrium is a state at rest: a dynamic stage after a static one
-  // must not start from the velocities a dynamic stage before it left (the
-  // shell would move off a configuration they do not belong to). The
-  // initial velocities, before any dynamic stage, are not touched. The
-  // next dynamic stage makes its acceleration consistent anyway
-  // (generalized alpha); zeroing it keeps a stale inertia force out of the
-  // reactions read at that stage's start.
-  void Scene::settle_at_rest(model::ShellState &state)
-  {
-    state.velocity()     = 0;
-    state.acceleration() = 0;
-    state.save();
   }
 
   void Scene::finish_staged_outputs(const model::ShellModel &model,

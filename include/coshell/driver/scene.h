@@ -136,9 +136,6 @@ namespace coshell::driver
     unsigned int steps_between_history_rows_ = 1;
     /// The time integrator's carry-over within the current dynamic stage.
     solvers::TimeIntegration::Carry carry_;
-    /// A dynamic stage has run in this run_stages() (a static stage
-    /// after one leaves the shell at rest).
-    bool dynamic_stage_ran_ = false;
 
     io::Json        run_level(unsigned int       level,
                               const std::string &directory,
@@ -146,9 +143,6 @@ namespace coshell::driver
     io::LevelResult solve_linear(const model::ShellModel &model,
                                  const std::string       &directory,
                                  std::ostream            &log);
-    /// After a static stage that follows a dynamic one: velocities and
-    /// accelerations zero, saved.
-    static void settle_at_rest(model::ShellState &state);
     /// Runs the stages (nonlinear static or dynamic) in order, carrying
     /// the configuration over.
     io::LevelResult run_stages(const model::ShellModel &model,
