@@ -419,3 +419,18 @@ add_test(NAME contact.interactive_input_drives_obstacle
           --driven "Contact/Obstacle 1/Input direction=0, 0, 1"
           --targets "0.01 0.015 0.04" --inputs "0.02 - 0.07")
 set_tests_properties(contact.interactive_input_drives_obstacle PROPERTIES LABELS contact)
+# The slope line's dF/ds (the Schur complement of the shell in the tangent
+# extended by the input) against the central difference of three
+# sessions that differ in the last input by +-1e-5 mm; backward Euler,
+# the barrier resting the plate on the rising plane. The tolerance is
+# twice the rounding of the six digits printed (measured 4.2e-6).
+add_test(NAME contact.interactive_input_slope
+  COMMAND ${COSHELL_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_input_slope.py
+          --coshell $<TARGET_FILE:coshell> --prm ${plane_scene}
+          --output ${CMAKE_CURRENT_BINARY_DIR}/output/contact.interactive_input_slope
+          --obstacles 1 --set "Analysis/Type=dynamic"
+          --set "Contact/Obstacle 1/Translation=0$<SEMICOLON> 0$<SEMICOLON> -0.27"
+          --set "Contact/Obstacle 1/Input direction=0, 0, 1"
+          --driven 1 --lines "0.01 0.02$<SEMICOLON> 0.015" --last 0.016 0.02
+          --delta 1e-5 --rtol 2e-5)
+set_tests_properties(contact.interactive_input_slope PROPERTIES LABELS contact)

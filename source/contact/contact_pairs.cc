@@ -423,6 +423,8 @@ namespace coshell::contact
   {
     const auto start = std::chrono::steady_clock::now();
     reset_pair_records();
+    if (with_tangent)
+      reset_input_couplings();
     model::DofBlock block;
     for (const Pair &pair : pairs_)
     {
@@ -448,6 +450,8 @@ namespace coshell::contact
         block.vector[i - shell.first] = -energy.gradient[i]; // on the shell
       if (with_tangent)
         pair_hessian(energy, shell, block.matrix);
+      if (with_tangent && drives_input(pair))
+        add_input_coupling(pair, block.dofs, energy);
       record_pair(pair, points, energy.gradient, gap, block);
       potential_ += energy.value;
       if (!pair.self)
@@ -509,7 +513,8 @@ namespace coshell::contact
     for (unsigned int i = 0; i < n; ++i)
       for (unsigned int j = 0; j < n; ++j)
         h[i * n + j] = energy.hessian[first + i][first + j];
-    if (parameters_.project_tangent || projecting_this_step_)
+    if ((parameters_.project_tangent || projecting_this_step_) &&
+        !exact_tangent_)
       project_to_positive_semidefinite(h, n);
     for (unsigned int i = 0; i < n; ++i)
       for (unsigned int j = 0; j < n; ++j)

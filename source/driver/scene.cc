@@ -840,7 +840,7 @@ namespace coshell::driver
     checkpoint_step(problem, out, run.stage, record.time, run.directory,
                     run.log);
     if (interactive_)
-      reply_step(problem, out, record.time,
+      reply_step(run.problem, out, record.time,
                  interactive_->real_time_factor(record.time));
   }
 
@@ -1026,10 +1026,10 @@ namespace coshell::driver
     return now;
   }
 
-  void Scene::reply_step(const model::ShellProblem &problem,
-                         const StagedOutput        &out,
-                         double                     time,
-                         double                     real_time_factor) const
+  void Scene::reply_step(model::ShellProblem &problem,
+                         const StagedOutput  &out,
+                         double               time,
+                         double               real_time_factor)
   {
     auto &reply = *interactive_->replies;
     reply << "step " << out.step << ' ' << time;
@@ -1059,6 +1059,72 @@ namespace coshell::driver
       }
     centroid /= double(n);
     reply << ' ' << centroid << ' ' << real_time_factor << std::endl;
+    if (interactive_->input && out.contact)
+      reply_input_slopes(problem, *out.contact, out.step, time);
+  }
+
+  namespace
+  {
+    /// Assembles the tangent at the problem's present state and hands it
+    /// to the solver, as Newton's iterations do; the state is not changed.
+    void factorize_tangent_at_state(model::ShellProblem   &problem,
+                                    solvers::LinearSolver &solver)
+    {
+      solvers::TangentMatrix tangent;
+      problem.reinit_tangent(tangent);
+      if (!tangent.distributed())
+        tangent.set_lower_only(
+            solver.reads_lower_triangle(problem.symmetric_tangent()));
+      Vector<double> residual(problem.sparsity().n_rows());
+      problem.evaluate(residual, &tangent);
+      solver.factorize(tangent, problem.symmetric_tangent());
+    }
+  } // namespace
+
+  // The tangent K of the step, extended by the input s, holds the
+  // obstacles' couplings: dr/ds = sum_o |d_o| c_o and, with the shell
+  // held, dF_o/ds = -|d_o| a_o (contact::Contact::InputCoupling). The
+  // shell's answer du/ds = K^-1 dr/ds adds c_o . du/ds: the Schur
+  // complement of the shell in that extended tangent, which is what a
+  // haptic loop's local model between two steps needs (Cavusoglu and
+  // Tendick 2000; see the README's protocol).
+  void Scene::reply_input_slopes(model::ShellProblem &problem,
+                                 contact::Contact    &contact,
+                                 unsigned int         step,
+                                 double               time)
+  {
+    // A linearized step's system is the step itself, and its factors
+    // serve. Newton judges its last iterate without a tangent when it
+    // expects convergence: its factors are then an iterate behind, which
+    // changed the plate-on-plane's slope by 1.2 %, and hold projected
+    // pair Hessians, another 0.03 % there. So the state reached gets its
+    // exact tangent.
+    if (time_integration_.method() != "linearized implicit euler")
+    {
+      contact.set_exact_tangent(true);
+      factorize_tangent_at_state(problem, linear_solver_);
+      contact.set_exact_tangent(false);
+    }
+    const auto    &couplings = contact.input_couplings();
+    const auto    &obstacles = contact.obstacles();
+    Vector<double> load(problem.model().n_dofs()), response;
+    for (unsigned int o = 0; o < obstacles.size(); ++o)
+      if (couplings[o].coupling.size() > 0)
+        load.add(obstacles[o].input_direction.norm(), couplings[o].coupling);
+    problem.constraints().condense(load);
+    linear_solver_.solve_with_factors(response, load);
+    auto &reply = *interactive_->replies;
+    reply << "slope " << step << ' ' << interactive_->input->value(time);
+    for (unsigned int o = 0; o < obstacles.size(); ++o)
+      if (couplings[o].coupling.size() > 0)
+      {
+        Vector<double> coupling = couplings[o].coupling;
+        problem.constraints().condense(coupling);
+        reply << ' '
+              << coupling * response - obstacles[o].input_direction.norm() *
+                                           couplings[o].stiffness;
+      }
+    reply << std::endl;
   }
 
   void Scene::run_static_stage(const Stage         &stage,

@@ -487,6 +487,21 @@ namespace coshell::solvers
     backend_->gather(solution, x);
   }
 
+  void LinearSolver::solve_with_factors(Vector<double>       &x,
+                                        const Vector<double> &b)
+  {
+    if (method_ != "umfpack" && method_ != "cholmod")
+      return solve(x, b);
+    const Stopwatch timer(seconds_);
+    x.reinit(b.size());
+    if (backend_->kept == Backend::Factors::none)
+      throw std::logic_error("solve_with_factors: nothing was factorized");
+    if (backend_->kept == Backend::Factors::cholmod)
+      backend_->cholmod.solve(x, b);
+    else
+      backend_->umfpack.apply_factors(x, b);
+  }
+
   namespace
   {
     /// The kept factors (CHOLMOD's or UMFPACK's) as a deal.II

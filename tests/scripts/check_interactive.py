@@ -14,6 +14,7 @@ gives a static stage's pseudo-time, which the simulated time in
 summary.json does not count."""
 import argparse
 import json
+import math
 import os
 import shutil
 import subprocess
@@ -98,7 +99,8 @@ def session_failures(run, output, n_obstacles, done_times, end,
     steps = [l.split() for l in lines if l.startswith("step ")]
     done = [l for l in lines if l.startswith("done ")]
     errors = [l for l in lines if l.startswith("error ")]
-    others = [l for l in lines if not l.split()[0] in ("step", "done", "error")]
+    others = [l for l in lines
+              if not l.split()[0] in ("step", "slope", "done", "error")]
     times = [float(s[2]) for s in steps]
     expected_fields = 3 + n_obstacles + 3 + 1
     if others:
@@ -118,6 +120,7 @@ def session_failures(run, output, n_obstacles, done_times, end,
     if n_obstacles and steps:
         failures += step_force_failures(steps, output,
                                         input_directions(settings))
+    failures += slope_line_failures(lines, len(input_directions(settings)))
     expected = end
     if static_stage:
         start, duration = static_stage
@@ -174,6 +177,29 @@ def step_force_failures(steps, output, directions):
           f"contact_forces.csv, {len(failures)} differ")
     if not checked:
         failures.append("no step line's force has a contact_forces.csv row")
+    return failures[:5]
+
+
+def slope_line_failures(lines, n_driven):
+    """With driven obstacles, each step line is followed by its slope
+    line: 'slope N s' and one finite slope per driven obstacle; without,
+    there is no slope line."""
+    slopes = [l.split() for l in lines if l.startswith("slope ")]
+    if not n_driven:
+        return [f"slope lines without a driven obstacle: {slopes[:2]}"] \
+            if slopes else []
+    failures = []
+    for k, line in enumerate(lines):
+        if not line.startswith("step "):
+            continue
+        following = lines[k + 1].split() if k + 1 < len(lines) else []
+        if (len(following) != 3 + n_driven or following[0] != "slope" or
+                following[1] != line.split()[1]):
+            failures.append(f"step {line.split()[1]}: no slope line with "
+                            f"{n_driven} slope(s) after it: {following}")
+        elif not all(math.isfinite(float(x)) for x in following[2:]):
+            failures.append(f"a slope line is not finite: {following}")
+    print(f"slope lines: {len(slopes)}, {len(failures)} wrong")
     return failures[:5]
 
 

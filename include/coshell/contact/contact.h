@@ -161,6 +161,33 @@ namespace coshell::contact
 
     /// Per obstacle, at the last evaluation.
     const std::vector<ObstacleLoad> &obstacle_loads() const;
+    /// For an obstacle that an interactive input drives (its Input
+    /// direction d, the input s moving it by s d): its contact and
+    /// friction pairs' exact (not projected) blocks H_ss on the shell's
+    /// translations, applied to
+    /// the unit vector e = d / |d| at every shell point of the pairs, at
+    /// the last evaluation that assembled the tangent. The pairs' energies
+    /// depend on differences of positions only, so the shell's blocks also
+    /// stand for the obstacle's: the force F the shell exerts on the
+    /// obstacle along e has dF/d(shell) = 'coupling' and, with the shell
+    /// held, dF/ds = -|d| 'stiffness'; the shell's residual has
+    /// dr/ds = |d| 'coupling'. Empty 'coupling' for the other obstacles.
+    struct InputCoupling
+    {
+      dealii::Vector<double> coupling;      ///< H_ss e, DoF layout, N/length
+      double                 stiffness = 0; ///< e^T H_ss e, N/length
+    };
+    const std::vector<InputCoupling> &input_couplings() const
+    {
+      return input_couplings_;
+    }
+    /// While true, the tangent's pair Hessians are not projected to
+    /// positive semi-definite whatever Projected tangent says: the slope
+    /// of a driven obstacle's force is exact only with the exact tangent.
+    void set_exact_tangent(bool exact)
+    {
+      exact_tangent_ = exact;
+    }
     /// Per obstacle, the work its prescribed motion has done on the shell
     /// up to the last evaluation, N mm: the change of its pairs' energy
     /// plus the work of their force on the shell (see step_work()). This
@@ -297,6 +324,7 @@ namespace coshell::contact
     std::vector<dealii::Point<3>> saved_positions_; ///< at save()
     double                        saved_time_ = 0;
     std::vector<ObstacleLoad>     loads_;
+    std::vector<InputCoupling>    input_couplings_;
     std::vector<double>           obstacle_work_; ///< up to save()
     /// Per obstacle, its pairs' energy and their force on the shell (DoF
     /// layout), at the last evaluation and at save().
@@ -318,6 +346,7 @@ namespace coshell::contact
     /// Project the pair Hessians: after a failed attempt (restore(), on
     /// retry) or a climbing correction (on stall), until the next save().
     bool                                       projecting_this_step_ = false;
+    bool                                       exact_tangent_        = false;
     std::vector<std::vector<dealii::Point<3>>> trial_current_;
     bool                                       trial_pending_ = false;
     /// What prepare() found at the last trial evaluation (line search).
@@ -592,18 +621,33 @@ namespace coshell::contact
                         bool               with_tangent,
                         model::DofBlock   &block);
     void   pair_dofs(const Pair &pair, model::DofBlock &block) const;
-    void   pair_hessian(const PairEnergy           &energy,
-                        ShellCoordinates            shell,
-                        dealii::FullMatrix<double> &matrix) const;
-    void   anticipate_obstacle(const Pair       &pair,
-                               const PairEnergy &energy,
-                               model::DofBlock  &block) const;
-    void   record_pair(const Pair                            &pair,
-                       const std::array<dealii::Point<3>, 4> &points,
-                       const Coordinates12                   &gradient,
-                       double                                 gap,
-                       const model::DofBlock                 &block);
-    void   reset_pair_records();
+    /// input_couplings_: zeroed before a tangent's pairs, then each
+    /// block of a driven obstacle's pair (contact_input.cc).
+    void reset_input_couplings();
+    bool drives_input(const Pair &pair) const;
+    /// 'shell_block': the pair's exact (not projected) Hessian on the
+    /// translations 'dofs' of its shell points.
+    void
+    add_input_coupling(const Pair                                         &pair,
+                       const std::vector<dealii::types::global_dof_index> &dofs,
+                       const dealii::FullMatrix<double> &shell_block);
+    /// The same for a contact pair, from its energy's Hessian.
+    void
+         add_input_coupling(const Pair                                         &pair,
+                            const std::vector<dealii::types::global_dof_index> &dofs,
+                            const PairEnergy &energy);
+    void pair_hessian(const PairEnergy           &energy,
+                      ShellCoordinates            shell,
+                      dealii::FullMatrix<double> &matrix) const;
+    void anticipate_obstacle(const Pair       &pair,
+                             const PairEnergy &energy,
+                             model::DofBlock  &block) const;
+    void record_pair(const Pair                            &pair,
+                     const std::array<dealii::Point<3>, 4> &points,
+                     const Coordinates12                   &gradient,
+                     double                                 gap,
+                     const model::DofBlock                 &block);
+    void reset_pair_records();
     /// The pairs within reach at x, from the candidate lists (made anew
     /// if they no longer cover x).
     void find_pairs(const std::vector<dealii::Point<3>> &x);

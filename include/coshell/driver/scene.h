@@ -262,12 +262,22 @@ namespace coshell::driver
         const solvers::TimeIntegration::StepCheck         &check,
         std::ostream                                      &log);
     /// The protocol's line for one step: time, the force on each
-    /// obstacle (N, magnitude), the shell's centroid and the real-time
-    /// factor so far.
-    void            reply_step(const model::ShellProblem &problem,
-                               const StagedOutput        &out,
-                               double                     time,
-                               double                     real_time_factor) const;
+    /// obstacle (N, magnitude, or the signed component along an Input
+    /// direction), the shell's centroid and the real-time factor so far;
+    /// and with driven obstacles, the slope line (reply_input_slopes).
+    void reply_step(model::ShellProblem &problem,
+                    const StagedOutput  &out,
+                    double               time,
+                    double               real_time_factor);
+    /// The slope line: the input s at 'time' and, per driven obstacle,
+    /// dF/ds of its force along its direction, as the tangent of the
+    /// state reached answers a change of s (a linearized step: its own
+    /// system, whose factors serve; Newton: one more assembly and
+    /// factorization).
+    void            reply_input_slopes(model::ShellProblem &problem,
+                                       contact::Contact    &contact,
+                                       unsigned int         step,
+                                       double               time);
     io::LevelResult solve_modes(const model::ShellModel &model,
                                 const std::string       &directory,
                                 std::ostream            &log);

@@ -77,6 +77,14 @@ namespace coshell::solvers
                const dealii::Vector<double> &b,
                Refinement refinement = Refinement::iterative);
 
+    /// Solves once more when the last matrix given to factorize() may be
+    /// gone (a time step's tangent, for how the step answers a change of
+    /// its data): the direct methods apply their kept factors, which with
+    /// Reuse factorization may be those of an earlier matrix; the Trilinos
+    /// methods hold their own copy and solve as solve() does.
+    void solve_with_factors(dealii::Vector<double>       &x,
+                            const dealii::Vector<double> &b);
+
     /// True when the method can use the near-null space (cg-amg with
     /// "AMG near-null space = rigid body").
     bool uses_near_null_space() const;
