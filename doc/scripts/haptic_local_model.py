@@ -10,8 +10,10 @@ millisecond, so its step at each millisecond gives the force there. A
 multirate session sends it every --update ms only; between two of its
 step lines a 1 kHz loop renders either the last force F (hold) or the
 local model F + k (s_device - s) with the step's input s and slope k
-(Cavusoglu and Tendick, ICRA 2000). Both are compared with the
-reference at every millisecond. The simulation is taken to keep up with
+(Cavusoglu and Tendick, ICRA 2000), or that model applied only to the
+device's deviation from the input's last rate, F + k (s_device - s -
+r (t - t_n)) with r the rate between the last two updates. Each is
+compared with the reference at every millisecond. The simulation is taken to keep up with
 the device (sim time = device time); how far it does not is the haptic
 rate of doc/performance.md.
 
@@ -78,11 +80,15 @@ def session(binary, output, times, args):
 
 
 def rendered(steps, t, s_device):
-    """Hold and local model at device time t from the last step line at
-    or before t."""
-    last = max((s for s in steps if s[0] <= t + 1e-12), key=lambda s: s[0])
-    _, force, s, slope = last
-    return force, force + slope * (s_device - s)
+    """Hold, local model, and local model on the device's deviation from
+    the input's last rate, at device time t from the last step line at or
+    before t (and the one before it, for the rate)."""
+    k = max(i for i, step in enumerate(steps) if step[0] <= t + 1e-12)
+    t_n, force, s, slope = steps[k]
+    rate = ((s - steps[k - 1][2]) / (t_n - steps[k - 1][0]) if k > 0
+            else 0.0)
+    return (force, force + slope * (s_device - s),
+            force + slope * (s_device - s - rate * (t - t_n)))
 
 
 def compare(reference, steps, ticks, args):
@@ -92,10 +98,10 @@ def compare(reference, steps, ticks, args):
     series = []
     for t in ticks:
         s_device = device(t, args.speed, args.amplitude, args.frequency)
-        hold, local = rendered(steps, t, s_device)
-        series.append((t, exact[round(t, 9)], hold, local))
+        series.append((t, exact[round(t, 9)],
+                       *rendered(steps, t, s_device)))
     errors = {name: [row[k] - row[1] for row in series]
-              for k, name in ((2, "hold"), (3, "local"))}
+              for k, name in ((2, "hold"), (3, "local"), (4, "deviation"))}
     summary = {}
     for name, e in errors.items():
         summary[f"{name}_rms_mN"] = 1e3 * math.sqrt(sum(x * x for x in e) /
@@ -148,7 +154,9 @@ def main():
                f"sin(2 pi {args.frequency:g} Hz t) for {args.duration:g} s; "
                "errors of the force rendered at 1 kHz against the session "
                "driven every 1 ms (mN): hold = the last step's force, "
-               "local = plus the slope line's k (s_device - s)"])
+               "local = plus the slope line's k (s_device - s), deviation = "
+               "plus k (s_device - s - r (t - t_n)), r the input's rate "
+               "between the last two updates"])
     plot(rows, shown, machine, commit)
 
 
@@ -158,17 +166,19 @@ def plot(rows, shown, machine, commit):
     t = [1e3 * (row[0] - FOLD_END) for row in series]
     for k, label in ((1, "reference (driven every 1 ms)"),
                      (2, f"hold, updates every {update:g} ms"),
-                     (3, "local model F + k (s - s_n)")):
+                     (3, "local model F + k (s - s_n)"),
+                     (4, "F + k (s - s_n - rate (t - t_n))")):
         axes[0].plot(t, [1e3 * row[k] for row in series], label=label,
-                     linewidth=1)
+                     linewidth=1, color=f"C{k - 1}")
     axes[0].set_xlabel("time after the fold (ms)")
     axes[0].set_ylabel("plunger force along its axis (mN)")
     axes[0].legend(fontsize=8)
     axes[0].grid(True, alpha=0.3)
     updates = [row["update_ms"] for row in rows]
-    for name, marker in (("hold", "o"), ("local", "s")):
+    for k, (name, marker) in enumerate((("hold", "o"), ("local", "s"),
+                                        ("deviation", "^")), start=1):
         axes[1].plot(updates, [row[f"{name}_rms_mN"] for row in rows],
-                     marker=marker, label=f"{name}, RMS")
+                     marker=marker, label=f"{name}, RMS", color=f"C{k}")
     finish_plot(figure, axes[1], "update interval (ms)",
                 "error against the 1 ms session (mN)",
                 f"{machine}, {commit}",
