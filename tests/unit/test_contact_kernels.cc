@@ -10,6 +10,8 @@
 
 #include <cmath>
 #include <functional>
+#include <utility>
+#include <vector>
 
 namespace
 {
@@ -109,6 +111,44 @@ TEST(ContactDistances, SegmentSegmentDerivativesInteriorAndClamped)
   EXPECT_NEAR(d.value, 0.09, 1e-14);
   EXPECT_NEAR(d.parameters[0], 0.5, 1e-14);
   EXPECT_NEAR(d.parameters[1], 0.5, 1e-14);
+}
+
+// The slope of a driven obstacle's force (the interactive protocol) takes
+// the obstacle's couplings from the shell's block of the pair's Hessian.
+// That holds because a distance depends on differences of positions only:
+// moving all four points by one vector changes nothing, so the gradient's
+// four parts sum to zero and the Hessian annihilates such a move, in every
+// region of the point-triangle distance and for segments.
+TEST(ContactDistances, DerivativesAreInvariantUnderTranslation)
+{
+  const std::vector<std::pair<DistanceFunction, Coordinates12>> cases = {
+      {point_triangle_distance, point_over(-0.3, -0.2, 0.4)},
+      {point_triangle_distance, point_over(0.5, -0.4, 0.2)},
+      {point_triangle_distance, point_over(0.8, 0.8, 0.3)},
+      {point_triangle_distance, point_over(0.25, 0.3, 0.35)},
+      {segment_segment_distance,
+       {0, 0, 0, 1, 0.1, 0, 0.4, -0.5, 0.3, 0.6, 0.7, 0.35}},
+      {segment_segment_distance,
+       {0, 0, 0, 1, 0, 0, 1.5, -0.5, 0.3, 1.6, 0.7, 0.2}}};
+  const Tensor<1, 3> move({0.3, -0.7, 0.5});
+  for (const auto &[f, x] : cases)
+  {
+    const SquaredDistance d = at(f, x, true);
+    for (unsigned int c = 0; c < 3; ++c)
+    {
+      double sum = 0;
+      for (unsigned int k = 0; k < 4; ++k)
+        sum += d.gradient[3 * k + c];
+      EXPECT_NEAR(sum, 0, 1e-14);
+    }
+    for (unsigned int i = 0; i < 12; ++i)
+    {
+      double moved = 0;
+      for (unsigned int j = 0; j < 12; ++j)
+        moved += d.hessian[i][j] * move[j % 3];
+      EXPECT_NEAR(moved, 0, 1e-13) << "Hessian row " << i;
+    }
+  }
 }
 
 TEST(ContactPotentials, BarrierDerivativesAndSupport)
