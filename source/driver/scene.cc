@@ -1079,6 +1079,20 @@ namespace coshell::driver
       problem.evaluate(residual, &tangent);
       solver.factorize(tangent, problem.symmetric_tangent());
     }
+
+    /// dr/ds of the driven obstacles' common input, condensed.
+    Vector<double> input_load(const model::ShellProblem &problem,
+                              const contact::Contact    &contact)
+    {
+      const auto    &couplings = contact.input_couplings();
+      const auto    &obstacles = contact.obstacles();
+      Vector<double> load(problem.model().n_dofs());
+      for (unsigned int o = 0; o < obstacles.size(); ++o)
+        if (couplings[o].coupling.size() > 0)
+          load.add(obstacles[o].input_direction.norm(), couplings[o].coupling);
+      problem.constraints().condense(load);
+      return load;
+    }
   } // namespace
 
   // The tangent K of the step, extended by the input s, holds the
@@ -1098,22 +1112,25 @@ namespace coshell::driver
     // expects convergence: its factors are then an iterate behind, which
     // changed the plate-on-plane's slope by 1.2 %, and hold projected
     // pair Hessians, another 0.03 % there. So the state reached gets its
-    // exact tangent.
-    if (time_integration_.method() != "linearized implicit euler")
+    // exact tangent (the couplings are assembled with it).
+    Vector<double> response;
+    contact.set_exact_tangent(true);
+    try
     {
-      contact.set_exact_tangent(true);
-      factorize_tangent_at_state(problem, linear_solver_);
-      contact.set_exact_tangent(false);
+      if (time_integration_.method() != "linearized implicit euler")
+        factorize_tangent_at_state(problem, linear_solver_);
+      linear_solver_.solve_with_factors(response, input_load(problem, contact));
     }
-    const auto    &couplings = contact.input_couplings();
-    const auto    &obstacles = contact.obstacles();
-    Vector<double> load(problem.model().n_dofs()), response;
-    for (unsigned int o = 0; o < obstacles.size(); ++o)
-      if (couplings[o].coupling.size() > 0)
-        load.add(obstacles[o].input_direction.norm(), couplings[o].coupling);
-    problem.constraints().condense(load);
-    linear_solver_.solve_with_factors(response, load);
-    auto &reply = *interactive_->replies;
+    catch (const std::exception &)
+    {
+      // The step has converged; only its slopes are missing (nan).
+      response.reinit(problem.model().n_dofs());
+      response = std::numeric_limits<double>::quiet_NaN();
+    }
+    contact.set_exact_tangent(false);
+    const auto &couplings = contact.input_couplings();
+    const auto &obstacles = contact.obstacles();
+    auto       &reply     = *interactive_->replies;
     reply << "slope " << step << ' ' << interactive_->input->value(time);
     for (unsigned int o = 0; o < obstacles.size(); ++o)
       if (couplings[o].coupling.size() > 0)
