@@ -282,6 +282,14 @@ coshell_bad_input_test(contact_input_with_checkpoints
   ${plane_scene} --interactive --set "Analysis/Type=dynamic"
   --set "Contact/Obstacle 1/Input direction=0, 0, 1"
   --set "Output/Checkpoint interval=0.01")
+# A failed solve with friction names its smoothing length: the plate's
+# dynamic start (a 4.48 N barrier push) with friction 0.3 and sticking
+# smoothed over v_s dt alone (1e-6 mm at 1 ms, less with every step cut)
+# fails at its first step; with a 1e-3 mm floor it runs.
+coshell_bad_input_test(contact_friction_too_stiff_to_solve
+  "friction on [0-9]+ pairs smooths sticking over [0-9.e-]+ .length units: Contact/Stiction velocity times the step, at least Contact/Stiction displacement."
+  ${plane_scene} --set "Analysis/Type=dynamic"
+  --set "Contact/Obstacle 1/Friction coefficient=0.3")
 coshell_bad_input_test(contact_negative_friction
   "Contact/Obstacle 1 .'plane'.: Friction coefficient: -0.1 is negative"
   ${plane_scene} --set "Contact/Obstacle 1/Friction coefficient=-0.1")

@@ -12,6 +12,9 @@
 #include <coshell/contact/contact.h>
 
 #include <cmath>
+#include <iomanip>
+#include <sstream>
+#include <string>
 
 namespace coshell::contact
 {
@@ -89,6 +92,32 @@ namespace coshell::contact
                : parameters_.obstacles[pair.obstacle].friction_coefficient;
   }
 
+  double Contact::smoothing_length() const
+  {
+    return std::max(parameters_.stiction_velocity *
+                        std::max(target_time_ - saved_time_, 0.0),
+                    parameters_.stiction_displacement);
+  }
+
+  std::string Contact::friction_report() const
+  {
+    unsigned int n = 0;
+    for (const NormalForce &lagged : lagged_normal_forces_)
+      n += friction_coefficient(lagged.pair) > 0 && lagged.force > 0;
+    if (n == 0)
+      return "";
+    // Sticking is a spring of stiffness mu lambda 2 / eps per pair: an
+    // eps far below the step's motion makes it a stiff one, which Newton
+    // may not get through (the plate on the plane with friction, v_s dt =
+    // 1e-6 mm, fails at its first step and runs with a 1e-3 mm floor).
+    std::ostringstream out;
+    out << std::setprecision(3) << "; friction on " << n
+        << " pairs smooths sticking over " << smoothing_length()
+        << " (length units: Contact/Stiction velocity times the step, at "
+           "least Contact/Stiction displacement), a stiff spring if short";
+    return out.str();
+  }
+
   /// Friction acts on the pairs that were in contact at the last
   /// converged state, with their normal force, normal and closest point
   /// of then (IPC's lagging): within a step it is the gradient of a fixed
@@ -126,9 +155,7 @@ namespace coshell::contact
   {
     const Pair  &pair = lagged.pair;
     const double mu   = friction_coefficient(pair);
-    const double eps  = std::max(parameters_.stiction_velocity *
-                                     std::max(target_time_ - saved_time_, 0.0),
-                                 parameters_.stiction_displacement);
+    const double eps  = smoothing_length();
     if (!(eps > 0) || lagged.force == 0)
       return;
     const Tensor<1, 3>            normal = lagged.normal / lagged.normal.norm();

@@ -169,7 +169,7 @@ namespace coshell::contact
 
   std::string ContactContribution::failure_context() const
   {
-    return contact_.squeeze_report();
+    return contact_.squeeze_report() + contact_.friction_report();
   }
 
   /// The shell vertex a pair's gap is charged to: its point, or the first

@@ -224,6 +224,9 @@ namespace coshell::contact
     /// obstacles (both gaps below a tenth of the activation distance), or
     /// else the smallest gap and its obstacle; "" without pairs.
     std::string squeeze_report() const;
+    /// For the same message, with friction: its pairs and the smoothing
+    /// length of sticking this step; "" without friction.
+    std::string friction_report() const;
     /// With exact pair Hessians and Projected tangent on stall: project
     /// them until the step is accepted or undone. True if that changed
     /// the tangent.
@@ -617,6 +620,9 @@ namespace coshell::contact
     /// Friction of the pairs in contact at the last converged state.
     void   add_friction_terms(const model::BlockSink &sink, bool with_tangent);
     double friction_coefficient(const Pair &pair) const;
+    /// eps of friction this step: Stiction velocity times the step, at
+    /// least Stiction displacement (length).
+    double smoothing_length() const;
     void   add_friction(const NormalForce &lagged,
                         bool               with_tangent,
                         model::DofBlock   &block);
