@@ -1065,21 +1065,6 @@ namespace coshell::driver
 
   namespace
   {
-    /// Assembles the tangent at the problem's present state and hands it
-    /// to the solver, as Newton's iterations do; the state is not changed.
-    void factorize_tangent_at_state(model::ShellProblem   &problem,
-                                    solvers::LinearSolver &solver)
-    {
-      solvers::TangentMatrix tangent;
-      problem.reinit_tangent(tangent);
-      if (!tangent.distributed())
-        tangent.set_lower_only(
-            solver.reads_lower_triangle(problem.symmetric_tangent()));
-      Vector<double> residual(problem.sparsity().n_rows());
-      problem.evaluate(residual, &tangent);
-      solver.factorize(tangent, problem.symmetric_tangent());
-    }
-
     /// dr/ds of the driven obstacles' common input, condensed.
     Vector<double> input_load(const model::ShellProblem &problem,
                               const contact::Contact    &contact)
@@ -1118,7 +1103,8 @@ namespace coshell::driver
     try
     {
       if (time_integration_.method() != "linearized implicit euler")
-        factorize_tangent_at_state(problem, linear_solver_);
+        solvers::Newton(path_following_.newton(), linear_solver_)
+            .factorize_tangent(problem);
       linear_solver_.solve_with_factors(response, input_load(problem, contact));
     }
     catch (const std::exception &)

@@ -179,6 +179,16 @@ namespace coshell::solvers
           linear_solver_.reads_lower_triangle(problem.symmetric_tangent()));
   }
 
+  void Newton::factorize_tangent(NonlinearProblem &problem) const
+  {
+    TangentMatrix tangent;
+    problem.reinit_tangent(tangent);
+    assemble_for_solver(problem, tangent);
+    Vector<double> residual(problem.sparsity().n_rows());
+    problem.evaluate(residual, &tangent);
+    linear_solver_.factorize(tangent, problem.symmetric_tangent());
+  }
+
   Vector<double> Newton::correction(NonlinearProblem     &problem,
                                     TangentMatrix        &tangent,
                                     const Vector<double> &residual) const

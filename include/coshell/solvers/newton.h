@@ -77,6 +77,13 @@ namespace coshell::solvers
     double single_correction(NonlinearProblem &problem,
                              const Observer   &observer = Observer()) const;
 
+    /// Assembles the tangent at the problem's present state and
+    /// factorizes it as an iteration would, without a correction: the
+    /// linear solver's kept factors are then the present state's (for how
+    /// a converged state answers a change of its data). The state is not
+    /// changed.
+    void factorize_tangent(NonlinearProblem &problem) const;
+
   private:
     NewtonParameters parameters_;
     LinearSolver    &linear_solver_;
