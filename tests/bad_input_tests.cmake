@@ -32,7 +32,7 @@ coshell_bad_input_test(thickness_expression_negative "Material: at triangle [0-9
   ${plate} --set "Material/Thickness=0.1 - x / 50")
 coshell_bad_input_test(density_expression_negative "Material: at triangle [0-9]+ .*region 0.: density = -"
   ${plate} --set "Material/Density=if(x < 9, 1, -1)")
-coshell_bad_input_test(malformed_gmsh_parameter "Mesh/Gmsh parameters: 'haptic width = 1' is not of the form 'name = number'"
+coshell_bad_input_test(malformed_gmsh_parameter "Mesh/Gmsh parameters: 'haptic width = 1' is not of the form 'name = value'"
   ${plate} --set "Mesh/Source=gmsh" --set "Mesh/Gmsh file=${CMAKE_SOURCE_DIR}/meshes/iol/lens.geo"
   --set "Mesh/Gmsh parameters=haptic width = 1")
 coshell_bad_input_test(edge_force_unknown_boundary "Loads/Edge forces: boundary id 7, which the mesh does not have"

@@ -119,17 +119,25 @@ coshell_scene_test(iol.haptic_compression.corotational_small_load_limit
 # Bad input of the injection scene: each gives a clear message, exits
 # non-zero and leaves no summary.json. Moved 8 mm back, the cartridge's
 # 4 mm tube would cross the flat lens (6 mm optic, 1.5 mm below the
-# tube's axis): the lens starts inside its wall; a nozzle of 0.8 mm (inner) is narrower than twice the
-# haptic's 0.45 mm (injector.geo refuses it); a plunger speed of 0 or
-# below is refused (Constants/Positive).
+# tube's axis): the lens starts inside its wall; a nozzle narrower than
+# twice the lens's haptic thickness is refused by injector.geo, which gets
+# the constant haptic_thickness that Material/Thickness uses (here 0.9 mm
+# haptics against a 1.7 mm nozzle, which would pass 0.45 mm ones); a
+# plunger speed of 0 or below is refused (Constants/Positive) where it is
+# defined, before push_time divides by it; a stage whose duration names
+# no constant is refused naming the stage.
 set(injection ${COSHELL_PRM}/iol/injection.prm)
-set(injection_constants "plunger_start = -6.9, fold_time = 1.0, rod_out_time = 1.3, push_time = 5.68, axis_height = 1.5")
+set(injection_constants "plunger_start = -6.9, nozzle_tip = 15, haptic_thickness = 0.45, fold_time = 1.0, rod_out_time = 1.3, push_time = rod_out_time + (nozzle_tip - plunger_start) / plunger_speed, axis_height = 1.5")
 coshell_bad_input_test(iol_lens_inside_cartridge_wall
   "the shell starts inside obstacle 'cartridge' .Contact/Obstacle 1."
   ${injection} --set "Contact/Obstacle 1/Translation=-8$<SEMICOLON> 0$<SEMICOLON> axis_height")
 coshell_bad_input_test(iol_nozzle_narrower_than_two_haptics
-  "Contact/Obstacle 1 .'cartridge'.: gmsh could not mesh .*injector.geo': Error.*nozzle's inner diameter 2 . nozzle_radius = 0.8 mm is not wider than twice the haptic thickness"
-  ${injection} --set "Contact/Obstacle 1/Gmsh parameters=nozzle_radius = 0.4")
+  "Contact/Obstacle 1 .'cartridge'.: gmsh could not mesh .*injector.geo': Error.*nozzle's inner diameter 2 . nozzle_radius = 1.7 mm is not wider than twice the haptic thickness .haptic_thickness = 0.9 mm"
+  ${injection} --set "Constants/Values=plunger_speed = 5, plunger_start = -6.9, nozzle_tip = 15, haptic_thickness = 0.9, fold_time = 1.0, rod_out_time = 1.3, push_time = rod_out_time + (nozzle_tip - plunger_start) / plunger_speed, axis_height = 1.5"
+  --set "Contact/Obstacle 1/Gmsh parameters=nozzle_tip = nozzle_tip, nozzle_radius = 0.85, haptic_thickness = haptic_thickness")
+coshell_bad_input_test(iol_stage_duration_unknown_constant
+  "Stage 2/Duration: cannot evaluate 'push_tim - rod_out_time'"
+  ${injection} --set "Stage 2/Duration=push_tim - rod_out_time")
 coshell_bad_input_test(iol_plunger_standing_still
   "Constants/Values: plunger_speed = 0 must be > 0"
   ${injection} --set "Constants/Values=plunger_speed = 0, ${injection_constants}")
@@ -195,16 +203,28 @@ coshell_iol_test(iol.injection.fold.modified_l check_injection.py
 coshell_iol_test(iol.fold.corotational_vs_linear check_fold_kinematics.py
                  injection.prm --set ${coarse_lens} ${frictionless} --until 0.6
                  --figure ${CMAKE_CURRENT_BINARY_DIR}/output/iol.fold.corotational_vs_linear/fold_kinematics.png)
-# The whole injection on the coarse lens, labelled long: fold, push,
-# exit, deployment, with the scene's friction. Every check of
-# check_injection.py; the energy balance counts friction's dissipation
-# (frictionless-scene history below; with friction on the obstacles but
-# not on the rod: 0.13 % remainder, 709 steps, plunger force at most
-# 54.2 mN, 3.3 min on 2026-11-25).
+# The whole injection on the coarse lens, in the default suite since
+# 2026-11-28 (labelled long while it took 3 to 5 min; 46 to 48 s then):
+# fold, push, exit, deployment, with the scene's friction. Every check of
+# check_injection.py: the fold's gaps, the folded optic in the nozzle, the
+# lens out past the tip, the optic's shape at rest in the bag, a finite
+# positive plunger force, and the energy balance with friction's
+# dissipation within 2 % (with friction on the obstacles but not on the
+# rod: 0.13 % remainder, 709 steps, plunger force at most 54.2 mN, 3.3 min
+# on 2026-11-25). Draws the deployment sequence.
 coshell_iol_test(iol.injection check_injection.py injection.prm
                  --set ${coarse_lens}
                  --figures ${CMAKE_CURRENT_BINARY_DIR}/output/iol.injection/png)
-set_tests_properties(iol.injection PROPERTIES LABELS "iol;long")
+# The whole injection at the slow end of real injectors, 1.5 mm/s (the
+# scene's 5 mm/s is the fast end): Constants/Values derives push_time and
+# the push stage's duration from plunger_speed, so the plunger makes the
+# same 21.9 mm stroke in 14.6 s. Every check of check_injection.py
+# (measured 2026-11-28: 1076 steps, plunger force at most 48.0 mN,
+# decentration 0.83 mm, tilt 18.7 degrees, energy remainder 0.25 %; 62 s).
+coshell_iol_test(iol.injection.slow_plunger check_injection.py injection.prm
+                 --set ${coarse_lens}
+                 --set "Constants/Values=plunger_speed = 1.5, ${injection_constants}")
+set_tests_properties(iol.injection.slow_plunger PROPERTIES LABELS "iol;long")
 # The same without friction (the scene's default until 2026-11-25; 3 min
 # on 2 threads on 2026-11-25: 989 steps, 7893 iterations; 5.5 min before
 # the coupling cache and the stall switch). Passed on 2 threads after

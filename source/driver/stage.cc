@@ -96,9 +96,13 @@ namespace coshell::driver
                         "configuration (and velocities) carried over; a "
                         "static stage after a dynamic one leaves the shell "
                         "at rest (its equilibrium has no velocities).");
-      prm.declare_entry("Duration", "1", Patterns::Double(0),
+      prm.declare_entry("Duration", "1", Patterns::Anything(),
                         "Length of the stage, s (in statics a pseudo-time "
-                        "that drives the load factor and the motions); > 0.");
+                        "that drives the load factor and the motions); > 0. "
+                        "A number or an expression of pi and the scene's "
+                        "Constants (e.g. 'push_time - rod_out_time'), so "
+                        "that a stage follows the design values it ends "
+                        "with.");
       prm.declare_entry("Load factor", "", Patterns::Anything(),
                         "Dimensionless factor on every load of subsection "
                         "Loads, a muparser expression of the time t (s, "
@@ -130,9 +134,11 @@ namespace coshell::driver
       try
       {
         Stage stage;
-        stage.number                  = k;
-        stage.analysis                = prm.get("Analysis type");
-        stage.duration                = prm.get_double("Duration");
+        stage.number   = k;
+        stage.analysis = prm.get("Analysis type");
+        stage.duration = io::evaluate_constant_expression(
+            prm.get("Duration"), io::expression_constants(),
+            where + "Duration");
         const std::string load_factor = Utilities::trim(prm.get("Load factor"));
         stage.load_factor =
             load_factor.empty()

@@ -4,8 +4,12 @@
 #include <deal.II/base/numbers.h>
 #include <deal.II/base/utilities.h>
 
+#include <deal.II/base/function_parser.h>
+#include <deal.II/base/point.h>
+
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <optional>
 #include <stdexcept>
 
@@ -21,52 +25,142 @@ namespace coshell::io
       return constants;
     }
 
-    /// The scene's constants with pi; throws naming the entry.
-    std::map<std::string, double> parse_values(const std::string &text)
+    bool is_name(const std::string &name)
     {
+      return !name.empty() &&
+             !std::isdigit(static_cast<unsigned char>(name[0])) &&
+             std::all_of(name.begin(), name.end(),
+                         [](char c) {
+                           return std::isalnum(static_cast<unsigned char>(c)) ||
+                                  c == '_';
+                         });
+    }
+
+    /// The entries of 'text' between the commas outside parentheses, so
+    /// that an expression's max(a, b) stays one entry.
+    std::vector<std::string> split_entries(const std::string &text)
+    {
+      std::vector<std::string> entries(1);
+      int                      depth = 0;
+      for (const char c : text)
+      {
+        depth += (c == '(') - (c == ')');
+        if (c == ',' && depth == 0)
+          entries.emplace_back();
+        else
+          entries.back() += c;
+      }
+      if (Utilities::trim(text).empty())
+        return {};
+      return entries;
+    }
+
+    /// "name = value, ..." -> the names and the values' texts in order.
+    std::vector<std::pair<std::string, std::string>>
+    split_named_entries(const std::string &text, const std::string &where)
+    {
+      std::vector<std::pair<std::string, std::string>> named;
+      for (const std::string &entry : split_entries(text))
+      {
+        const auto equals = entry.find('=');
+        const auto name =
+            Utilities::trim(entry.substr(0, std::min(equals, entry.size())));
+        const auto value = equals == std::string::npos
+                               ? std::string()
+                               : Utilities::trim(entry.substr(equals + 1));
+        if (!is_name(name) || value.empty())
+          throw std::invalid_argument(where + ": '" + Utilities::trim(entry) +
+                                      "' is not of the form 'name = value'");
+        named.emplace_back(name, value);
+      }
+      return named;
+    }
+
+    /// The scene's constants with pi, each value a number or an expression
+    /// of those before it; a constant listed in 'positive' must be > 0 where
+    /// it is defined, so that the message names it rather than a later
+    /// constant divided by it. Throws naming the entry.
+    std::map<std::string, double>
+    parse_values(const std::string              &text,
+                 const std::vector<std::string> &positive)
+    {
+      const std::string             where = "Constants/Values";
       std::map<std::string, double> values{{"pi", numbers::PI}};
-      for (const auto &[name, value] :
-           parse_named_numbers(text, "Constants/Values"))
+      for (const auto &[name, expression] : split_named_entries(text, where))
+      {
+        const double value = evaluate_constant_expression(expression, values,
+                                                          where + ": " + name);
         if (!values.emplace(name, value).second)
-          throw std::invalid_argument("Constants/Values: " + name +
+          throw std::invalid_argument(where + ": " + name +
                                       " is pi or given twice");
+        if (std::find(positive.begin(), positive.end(), name) !=
+                positive.end() &&
+            !(value > 0))
+          throw std::invalid_argument(
+              where + ": " + name + " = " + Utilities::to_string(value) +
+              " must be > 0 (it is listed in Constants/Positive)");
+      }
+      for (const std::string &name : positive)
+        if (values.find(name) == values.end())
+          throw std::invalid_argument(
+              "Constants/Positive: '" + name +
+              "' is not a constant of Constants/Values");
       return values;
     }
   } // namespace
 
-  std::vector<std::pair<std::string, double>>
-  parse_named_numbers(const std::string &text, const std::string &where)
+  double
+  evaluate_constant_expression(const std::string                   &text,
+                               const std::map<std::string, double> &constants,
+                               const std::string                   &where)
   {
-    std::vector<std::pair<std::string, double>> named_numbers;
-    for (const auto &entry : Utilities::split_string_list(text, ','))
+    if (const auto number = as_number(text))
+      return *number;
+    // One variable no constant can be named like, as muparser needs one.
+    FunctionParser<1> parser(1);
+    double            value = 0;
+    try
     {
-      const auto parts = Utilities::split_string_list(entry, '=');
-      const auto name  = parts.empty() ? std::string() : parts[0];
-      const bool named =
-          !name.empty() && !std::isdigit(static_cast<unsigned char>(name[0])) &&
-          std::all_of(name.begin(), name.end(),
-                      [](char c) {
-                        return std::isalnum(static_cast<unsigned char>(c)) ||
-                               c == '_';
-                      });
-      const auto value =
-          parts.size() == 2 ? as_number(parts[1]) : std::optional<double>();
-      if (!named || !value)
-        throw std::invalid_argument(where + ": '" + entry +
-                                    "' is not of the form 'name = number'");
-      named_numbers.emplace_back(name, *value);
+      parser.initialize("coshell_unused_variable_",
+                        std::vector<std::string>{text}, constants);
+      value = parser.value(Point<1>());
     }
-    return named_numbers;
+    catch (...)
+    {
+      throw std::invalid_argument(
+          where + ": cannot evaluate '" + Utilities::trim(text) +
+          "' (a number, or an expression of pi and the constants defined "
+          "before it)");
+    }
+    if (!std::isfinite(value))
+      throw std::invalid_argument(where + ": '" + Utilities::trim(text) +
+                                  "' is not finite");
+    return value;
+  }
+
+  std::vector<std::pair<std::string, double>>
+  parse_named_values(const std::string &text, const std::string &where)
+  {
+    std::vector<std::pair<std::string, double>> named_values;
+    for (const auto &[name, expression] : split_named_entries(text, where))
+      named_values.emplace_back(
+          name, evaluate_constant_expression(expression, expression_constants(),
+                                             where + ": " + name));
+    return named_values;
   }
 
   void Constants::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Constants");
     prm.declare_entry("Values", "", Patterns::Anything(),
-                      "Named constants as 'name = number' entries separated "
+                      "Named constants as 'name = value' entries separated "
                       "by ',', usable in every expression of the prm; each "
                       "in the unit the prm's header gives it (e.g. "
-                      "'plunger_speed = 5' in mm/s).");
+                      "'plunger_speed = 5' in mm/s). A value is a number or "
+                      "an expression of pi and the constants before it "
+                      "(e.g. 'push_time = rod_out_time + 21.9 / "
+                      "plunger_speed'), so that derived times follow the "
+                      "design values they come from.");
     prm.declare_entry("Positive", "", Patterns::Anything(),
                       "Names of constants (separated by ',') that must be "
                       "> 0: a scene that needs a forward speed or a "
@@ -77,22 +171,10 @@ namespace coshell::io
   void Constants::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Constants");
-    const auto values   = parse_values(prm.get("Values"));
+    const std::string values_text = prm.get("Values");
     const auto positive = Utilities::split_string_list(prm.get("Positive"));
     prm.leave_subsection();
-    for (const std::string &name : positive)
-    {
-      const auto found = values.find(name);
-      if (found == values.end())
-        throw std::invalid_argument("Constants/Positive: '" + name +
-                                    "' is not a constant of Constants/Values");
-      if (!(found->second > 0))
-        throw std::invalid_argument(
-            "Constants/Values: " + name + " = " +
-            Utilities::to_string(found->second) +
-            " must be > 0 (it is listed in Constants/Positive)");
-    }
-    scene_constants() = values;
+    scene_constants() = parse_values(values_text, positive);
   }
 
   const std::map<std::string, double> &expression_constants()

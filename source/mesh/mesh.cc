@@ -205,7 +205,7 @@ namespace coshell::mesh
   GmshConstants parse_gmsh_constants(const std::string &text,
                                      const std::string &where)
   {
-    return io::parse_named_numbers(text, where);
+    return io::parse_named_values(text, where);
   }
 
   void read_gmsh(Surface             &surface,

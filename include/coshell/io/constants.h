@@ -25,12 +25,22 @@ namespace coshell::io
     static void parse_parameters(dealii::ParameterHandler &prm);
   };
 
-  /// "name = number, name = number" -> the pairs in order. Throws
-  /// std::invalid_argument "<where>: '<entry>' is not of the form 'name =
-  /// number'" (a name is letters, digits and '_', not starting with a
-  /// digit).
+  /// "name = value, name = value" -> the pairs in order, each value a
+  /// number or an expression of pi and the scene's Constants (commas inside
+  /// parentheses belong to the expression). Throws std::invalid_argument
+  /// "<where>: '<entry>' is not of the form 'name = value'" (a name is
+  /// letters, digits and '_', not starting with a digit), or naming the
+  /// value that cannot be evaluated.
   std::vector<std::pair<std::string, double>>
-  parse_named_numbers(const std::string &text, const std::string &where);
+  parse_named_values(const std::string &text, const std::string &where);
+
+  /// 'text' as a number, or as a muparser expression of the given
+  /// constants. Throws std::invalid_argument "<where>: cannot evaluate
+  /// '<text>' ..." or "... is not finite".
+  double
+  evaluate_constant_expression(const std::string                   &text,
+                               const std::map<std::string, double> &constants,
+                               const std::string                   &where);
 
   /// The constants every expression sees (pi and those of the scene).
   const std::map<std::string, double> &expression_constants();

@@ -42,7 +42,9 @@ namespace coshell::mesh
   /// gmsh constants given on the command line (-setnumber name value).
   using GmshConstants = std::vector<std::pair<std::string, double>>;
 
-  /// Parses "name = value, name = value"; names are identifiers. Throws
+  /// Parses "name = value, name = value"; names are identifiers, values
+  /// numbers or expressions of the scene's Constants (so that a mesh's
+  /// design value can be the one the prm states once). Throws
   /// std::invalid_argument "<where>: ..." naming the bad entry.
   GmshConstants parse_gmsh_constants(const std::string &text,
                                      const std::string &where);

@@ -1,0 +1,85 @@
+#include <coshell/io/constants.h>
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace
+{
+  using coshell::io::Constants;
+
+  /// Parses 'values' (and 'positive') as a prm's Constants subsection.
+  void parse_constants(const std::string &values,
+                       const std::string &positive = "")
+  {
+    dealii::ParameterHandler prm;
+    Constants::declare_parameters(prm);
+    prm.enter_subsection("Constants");
+    prm.set("Values", values);
+    prm.set("Positive", positive);
+    prm.leave_subsection();
+    Constants::parse_parameters(prm);
+  }
+
+  std::string message_of(const std::string &values,
+                         const std::string &positive = "")
+  {
+    try
+    {
+      parse_constants(values, positive);
+    }
+    catch (const std::invalid_argument &error)
+    {
+      return error.what();
+    }
+    return "";
+  }
+} // namespace
+
+// The injection's derived time: the expression sees the constants before
+// it, and a comma inside max(...) does not end the entry.
+TEST(Constants, ValuesMayBeExpressionsOfEarlierConstants)
+{
+  parse_constants("speed = 5, start = -6.9, tip = 15, out = 1.3, "
+                  "push = out + (tip - start) / speed, "
+                  "later = max(push, 2 * pi)");
+  const auto &constants = coshell::io::expression_constants();
+  EXPECT_DOUBLE_EQ(constants.at("push"), 1.3 + 21.9 / 5);
+  EXPECT_DOUBLE_EQ(constants.at("later"), 2 * M_PI);
+  EXPECT_DOUBLE_EQ(coshell::io::evaluate_constant_expression(
+                       "push - out", constants, "Stage 2/Duration"),
+                   21.9 / 5);
+  const auto named =
+      coshell::io::parse_named_values("a = tip, b = 0.45", "Gmsh parameters");
+  ASSERT_EQ(named.size(), 2u);
+  EXPECT_EQ(named[0].first, "a");
+  EXPECT_DOUBLE_EQ(named[0].second, 15);
+}
+
+// A constant used before it is defined, a misspelt one and a division by
+// a zero constant are refused, naming the entry; a positive constant is
+// checked where it is defined, before a later one divides by it.
+TEST(Constants, BadValuesAreRefusedByName)
+{
+  EXPECT_NE(message_of("push = out + 1, out = 1.3")
+                .find("Constants/Values: push: cannot evaluate 'out + 1'"),
+            std::string::npos);
+  EXPECT_NE(message_of("speed = 0, push = 1 / speed")
+                .find("Constants/Values: push: '1 / speed' is not finite"),
+            std::string::npos);
+  EXPECT_NE(message_of("speed = 0, push = 1 / speed", "speed")
+                .find("Constants/Values: speed = 0 must be > 0"),
+            std::string::npos);
+  EXPECT_NE(message_of("speed 5").find("'speed 5' is not of the form "
+                                       "'name = value'"),
+            std::string::npos);
+  EXPECT_NE(message_of("speed = 5", "sped")
+                .find("Constants/Positive: 'sped' is not a constant"),
+            std::string::npos);
+  EXPECT_NE(message_of("pi = 3").find("pi is pi or given twice"),
+            std::string::npos);
+}
