@@ -35,6 +35,10 @@ coshell_bad_input_test(density_expression_negative "Material: at triangle [0-9]+
 coshell_bad_input_test(malformed_gmsh_parameter "Mesh/Gmsh parameters: 'haptic width = 1' is not of the form 'name = value'"
   ${plate} --set "Mesh/Source=gmsh" --set "Mesh/Gmsh file=${CMAKE_SOURCE_DIR}/meshes/iol/lens.geo"
   --set "Mesh/Gmsh parameters=haptic width = 1")
+coshell_bad_input_test(region_pose_without_axis "Quantities of interest/Region poses: '0 5 5 0 0 0 0' is not 'region cx cy cz ax ay az'"
+  ${plate} --set "Quantities of interest/Region poses=plate: 0 5 5 0 0 0 0")
+coshell_bad_input_test(region_pose_of_missing_region "Quantities of interest/Region poses: plate: the mesh has fewer than three vertices in region 7"
+  ${plate} --set "Quantities of interest/Region poses=plate: 7 5 5 0 0 0 1")
 coshell_bad_input_test(edge_force_unknown_boundary "Loads/Edge forces: boundary id 7, which the mesh does not have"
   ${plate} --set "Loads/Edge forces=7: 1 0 0")
 coshell_bad_input_test(interactive_without_dynamics "--interactive drives dynamic stages, and this scene has none"

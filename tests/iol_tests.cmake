@@ -127,13 +127,13 @@ coshell_scene_test(iol.haptic_compression.corotational_small_load_limit
 # defined, before push_time divides by it; a stage whose duration names
 # no constant is refused naming the stage.
 set(injection ${COSHELL_PRM}/iol/injection.prm)
-set(injection_constants "plunger_start = -6.9, nozzle_tip = 15, haptic_thickness = 0.45, fold_time = 1.0, rod_out_time = 1.3, push_time = rod_out_time + (nozzle_tip - plunger_start) / plunger_speed, axis_height = 1.5")
+set(injection_constants "plunger_start = -6.9, nozzle_tip = 15, haptic_thickness = 0.45, fold_time = 1.0, rod_out_time = 1.3, push_time = rod_out_time + (nozzle_tip - plunger_start) / plunger_speed, axis_height = 1.5, bag_x = 17.2")
 coshell_bad_input_test(iol_lens_inside_cartridge_wall
   "the shell starts inside obstacle 'cartridge' .Contact/Obstacle 1."
   ${injection} --set "Contact/Obstacle 1/Translation=-8$<SEMICOLON> 0$<SEMICOLON> axis_height")
 coshell_bad_input_test(iol_nozzle_narrower_than_two_haptics
   "Contact/Obstacle 1 .'cartridge'.: gmsh could not mesh .*injector.geo': Error.*nozzle's inner diameter 2 . nozzle_radius = 1.7 mm is not wider than twice the haptic thickness .haptic_thickness = 0.9 mm"
-  ${injection} --set "Constants/Values=plunger_speed = 5, plunger_start = -6.9, nozzle_tip = 15, haptic_thickness = 0.9, fold_time = 1.0, rod_out_time = 1.3, push_time = rod_out_time + (nozzle_tip - plunger_start) / plunger_speed, axis_height = 1.5"
+  ${injection} --set "Constants/Values=plunger_speed = 5, plunger_start = -6.9, nozzle_tip = 15, haptic_thickness = 0.9, fold_time = 1.0, rod_out_time = 1.3, push_time = rod_out_time + (nozzle_tip - plunger_start) / plunger_speed, axis_height = 1.5, bag_x = 17.2"
   --set "Contact/Obstacle 1/Gmsh parameters=nozzle_tip = nozzle_tip, nozzle_radius = 0.85, haptic_thickness = haptic_thickness")
 coshell_bad_input_test(iol_stage_duration_unknown_constant
   "Stage 2/Duration: cannot evaluate 'push_tim - rod_out_time'"

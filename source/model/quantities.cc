@@ -1,8 +1,12 @@
 #include <coshell/model/quantities.h>
 
+#include <coshell/io/constants.h>
+
+#include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/utilities.h>
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 #include <stdexcept>
 
@@ -47,6 +51,18 @@ namespace coshell::model
                       "separated by ';'. The value is in the unit of its "
                       "component: length for ux, uy, uz, rad for rx, ry, "
                       "rz.");
+    prm.declare_entry(
+        "Region poses", "", Patterns::Anything(),
+        "Where a region of the shell (a material id: the optic of a lens) "
+        "sits against an axis (a capsular bag's), as 'name: region cx cy "
+        "cz ax ay az' entries separated by ';': the axis through the "
+        "centre (cx, cy, cz), in length units, along (ax, ay, az); each "
+        "number may be an expression of the scene's Constants (no blanks "
+        "inside). Gives name_decentration, the distance of the region's "
+        "vertex centroid from the axis (length), name_axial, its position "
+        "along the axis from the centre (length), and name_tilt, the angle "
+        "between the axis and the normal of the plane fitted to the "
+        "region's vertices by least squares (degrees, 0 to 90).");
     prm.declare_entry("Reference values", "",
                       Patterns::Map(Patterns::Anything(), Patterns::Double()),
                       "Reference value per quantity name ('name: value, "
@@ -77,6 +93,7 @@ namespace coshell::model
     prm.enter_subsection("Quantities of interest");
     const std::string points     = prm.get("Point values");
     const std::string maxima     = prm.get("Maximum values");
+    const std::string poses      = prm.get("Region poses");
     const std::string references = prm.get("Reference values");
     const std::string curves     = prm.get("Reference curves");
     largest_strains_             = prm.get_bool("Largest strains");
@@ -98,6 +115,7 @@ namespace coshell::model
     for (const auto &[name, component] :
          named_entries(maxima, "Maximum values"))
       maximum_values_.push_back({name, parse_component(component)});
+    parse_region_poses(poses);
     references_.clear();
     for (const auto &entry : Utilities::split_string_list(references, ','))
     {
@@ -123,6 +141,74 @@ namespace coshell::model
     }
   }
 
+  void QuantitiesOfInterest::parse_region_poses(const std::string &text)
+  {
+    const std::string where = "Quantities of interest/Region poses";
+    region_poses_.clear();
+    for (const auto &[name, spec] : named_entries(text, "Region poses"))
+    {
+      std::istringstream  in(spec);
+      std::vector<double> numbers;
+      for (std::string token; in >> token;)
+        numbers.push_back(io::evaluate_constant_expression(
+            token, io::expression_constants(), where + ": " + name));
+      const bool is_region = numbers.size() == 7 && numbers[0] >= 0 &&
+                             numbers[0] == std::floor(numbers[0]);
+      const Tensor<1, 3> axis({numbers.size() == 7 ? numbers[4] : 0,
+                               numbers.size() == 7 ? numbers[5] : 0,
+                               numbers.size() == 7 ? numbers[6] : 0});
+      if (!is_region || axis.norm() == 0)
+        throw std::invalid_argument(
+            where + ": '" + spec +
+            "' is not 'region cx cy cz ax ay az' (a material id, a point "
+            "and a non-zero direction)");
+      region_poses_.push_back({name, static_cast<unsigned int>(numbers[0]),
+                               Point<3>(numbers[1], numbers[2], numbers[3]),
+                               axis / axis.norm()});
+    }
+  }
+
+  void
+  QuantitiesOfInterest::add_region_pose(const RegionPose              &pose,
+                                        const ShellModel              &model,
+                                        const Vector<double>          &solution,
+                                        std::map<std::string, double> &values)
+  {
+    const auto       &surface = model.surface();
+    std::vector<bool> in_region(surface.n_vertices(), false);
+    for (const auto &cell : surface.active_cell_iterators())
+      if (cell->material_id() == pose.region)
+        for (const unsigned int v : cell->vertex_indices())
+          in_region[cell->vertex_index(v)] = true;
+    std::vector<Point<3>> positions;
+    for (unsigned int v = 0; v < surface.n_vertices(); ++v)
+      if (in_region[v])
+        positions.push_back(surface.get_vertices()[v] +
+                            vertex_block(solution, model.vertex_dofs(v), ux));
+    if (positions.size() < 3)
+      throw std::runtime_error(
+          "Quantities of interest/Region poses: " + pose.name +
+          ": the mesh has fewer than three "
+          "vertices in region " +
+          std::to_string(pose.region));
+    Point<3> centroid;
+    for (const auto &x : positions)
+      centroid += x / static_cast<double>(positions.size());
+    SymmetricTensor<2, 3> scatter;
+    for (const auto &x : positions)
+      scatter += symmetrize(outer_product(x - centroid, x - centroid));
+    // Eigenvectors come by decreasing eigenvalue: the last is the normal
+    // of the least-squares plane.
+    const Tensor<1, 3> normal           = eigenvectors(scatter)[2].second;
+    const Tensor<1, 3> offset           = centroid - pose.centre;
+    const double       axial            = offset * pose.axis;
+    values[pose.name + "_decentration"] = (offset - axial * pose.axis).norm();
+    values[pose.name + "_axial"]        = axial;
+    values[pose.name + "_tilt"] =
+        std::acos(std::min(1.0, std::abs(normal * pose.axis))) * 180 /
+        numbers::PI;
+  }
+
   void QuantitiesOfInterest::check_defined(const std::string &name,
                                            const std::string &parameter) const
   {
@@ -131,6 +217,9 @@ namespace coshell::model
       known = known || p.name == name;
     for (const auto &m : maximum_values_)
       known = known || m.name == name;
+    for (const auto &pose : region_poses_)
+      for (const char *measure : {"_decentration", "_axial", "_tilt"})
+        known = known || pose.name + measure == name;
     if (!known)
       throw std::invalid_argument("Quantities of interest/" + parameter +
                                   " names '" + name +
@@ -173,6 +262,8 @@ namespace coshell::model
         }
       values[m.name] = extreme;
     }
+    for (const auto &pose : region_poses_)
+      add_region_pose(pose, model, solution, values);
     return values;
   }
 

@@ -175,13 +175,13 @@ def check_fold_and_exit(checks, history, args):
 
 def rigid_fit_deviation(reference, current):
     """Largest distance between 'current' and the best rigid motion of
-    'reference' (Kabsch), and that motion's rotation."""
+    'reference' (Kabsch)."""
     a = reference - reference.mean(axis=0)
     b = current - current.mean(axis=0)
     u, _, vt = np.linalg.svd(a.T @ b)
     sign = np.sign(np.linalg.det(u @ vt))
     rotation = u @ np.diag([1.0, 1.0, sign]) @ vt
-    return np.linalg.norm(a @ rotation - b, axis=1).max(), rotation
+    return np.linalg.norm(a @ rotation - b, axis=1).max()
 
 
 def final_lens(output):
@@ -199,8 +199,8 @@ def check_deployment(checks, history, args, output):
     checks("the lens comes to rest in the bag (end kinetic energy below 1 % "
            "of its peak)", kinetic[-1] <= 0.01 * kinetic.max())
     reference, current, optic, frames = final_lens(output)
-    deviation, rotation = rigid_fit_deviation(reference[optic], current[optic])
-    whole, _ = rigid_fit_deviation(reference, current)
+    deviation = rigid_fit_deviation(reference[optic], current[optic])
+    whole = rigid_fit_deviation(reference, current)
     print(f"largest deviation from the rest shape after a rigid fit: optic "
           f"{deviation:.4g} mm ({100 * deviation / args.optic_diameter:.3g} % "
           f"of its diameter), whole lens {whole:.4g} mm (haptics held by "
@@ -213,14 +213,36 @@ def check_deployment(checks, history, args, output):
     scaled = (current - centre) / np.array([equator, equator, polar])
     inside = np.linalg.norm(scaled, axis=1).max()
     checks("every lens vertex lies inside the bag", inside < 1)
-    optic_centre = current[optic].mean(axis=0)
-    decentration = np.linalg.norm((optic_centre - centre)[:2])
-    normal = rotation.T @ np.array([0.0, 0.0, 1.0])
-    tilt = math.degrees(math.acos(min(1.0, abs(normal[2]))))
-    print(f"at rest in the bag: optic decentration {decentration:.4g} mm, "
-          f"tilt {tilt:.3g} degrees, axial position "
-          f"{optic_centre[2] - centre[2]:.4g} mm from the equator plane")
+    check_optic_pose(checks, history, current[optic], centre)
     return frames
+
+
+def check_optic_pose(checks, history, optic_points, centre):
+    """coshell's optic_decentration, optic_axial and optic_tilt (Quantities
+    of interest/Region poses) at the last step against the same measures
+    computed here from the last VTU: the centroid of the optic's vertices
+    (each once; the VTU repeats a vertex in every cell) and the normal of
+    their least-squares plane, against the bag's axis along z."""
+    points = np.unique(optic_points, axis=0)
+    centroid = points.mean(axis=0)
+    normal = np.linalg.svd(points - centroid)[2][2]
+    ours = {"optic_decentration": np.linalg.norm((centroid - centre)[:2]),
+            "optic_axial": centroid[2] - centre[2],
+            "optic_tilt": math.degrees(math.acos(min(1.0, abs(normal[2]))))}
+    theirs = {name: column(history, name)[-1] for name in ours}
+    print(f"at rest in the bag: optic decentration "
+          f"{theirs['optic_decentration']:.4g} mm, tilt "
+          f"{theirs['optic_tilt']:.3g} degrees, axial position "
+          f"{theirs['optic_axial']:.4g} mm from the equator plane (coshell; "
+          f"from the VTU here: {ours['optic_decentration']:.4g} mm, "
+          f"{ours['optic_tilt']:.3g} degrees, {ours['optic_axial']:.4g} mm)")
+    # The VTU's single-precision positions (about 1e-6 mm here) bound the
+    # difference.
+    checks("coshell's optic decentration, axial position and tilt agree with "
+           "those of the last VTU (1e-4 mm, 0.01 degrees)",
+           abs(ours["optic_decentration"] - theirs["optic_decentration"])
+           < 1e-4 and abs(ours["optic_axial"] - theirs["optic_axial"]) < 1e-4
+           and abs(ours["optic_tilt"] - theirs["optic_tilt"]) < 1e-2)
 
 
 def check_energy(checks, history, forces, args):

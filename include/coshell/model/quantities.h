@@ -49,13 +49,29 @@ namespace coshell::model
       std::string name;
       Component   component;
     };
+    /// Where a region (material id) of the shell sits against an axis: a
+    /// lens's optic in its capsular bag.
+    struct RegionPose
+    {
+      std::string          name;
+      unsigned int         region;
+      dealii::Point<3>     centre;
+      dealii::Tensor<1, 3> axis; // unit
+    };
     std::vector<PointValue>       point_values_;
     std::vector<MaximumValue>     maximum_values_;
+    std::vector<RegionPose>       region_poses_;
     std::map<std::string, double> references_;
     std::map<std::string, Curve>  reference_curves_;
     bool                          largest_strains_ = false;
 
     void check_defined(const std::string &name,
                        const std::string &parameter) const;
+    void parse_region_poses(const std::string &text);
+    /// name_decentration, name_tilt and name_axial of 'pose' into 'values'.
+    static void add_region_pose(const RegionPose              &pose,
+                                const ShellModel              &model,
+                                const dealii::Vector<double>  &solution,
+                                std::map<std::string, double> &values);
   };
 } // namespace coshell::model
