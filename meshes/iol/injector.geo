@@ -1,13 +1,17 @@
 // The injector cartridge of the IOL scene, a rigid surface about the x
-// axis (units: mm). A flat loading chamber of elliptical cross-section
+// axis (units: mm). A loading chamber of elliptical cross-section
 // (half-width chamber_half_width along y, half-height chamber_half_height
-// along z) from x = chamber_start to taper_start holds the lens flat; a
-// lofted folding taper turns the ellipse into the nozzle's circle (inner
-// radius nozzle_radius) at taper_end; the nozzle runs to nozzle_tip, where
-// its lip (wall thickness nozzle_wall) turns back over lip_length on the
-// outside. The lens lies a little below the axis (prm/iol/injection.prm),
-// so the taper's side walls meet the optic's rim from below and fold it
-// upwards. Every constant can be set from the prm (Gmsh parameters).
+// along z) from x = chamber_start to taper_start; a lofted taper turns the
+// ellipse into the nozzle's circle (inner radius nozzle_radius) at
+// taper_end; the nozzle runs to nozzle_tip, where its lip (wall thickness
+// nozzle_wall) turns back over lip_length on the outside. Every constant
+// can be set from the prm (Gmsh parameters).
+// prm/iol/injection.prm makes the chamber a circular tube of the folding
+// wings' radius (chamber_half_width = chamber_half_height = 2) that takes
+// the lens already folded by the wings. The defaults below are the first
+// design, a flat chamber whose taper was to fold the lens as it was
+// pushed: it jammed in all eleven runs (doc/validation.md, "Why wings and
+// not a taper").
 SetFactory("OpenCASCADE");
 DefineConstant[
   refinement_level = 0,

@@ -62,10 +62,10 @@ def energy_balance(history, forces):
     """The energies at the last step of a dynamic run with contact: the
     work the moving obstacles did on the shell (contact_forces.csv 'work',
     per obstacle), the external work, and the shell's strain and kinetic
-    energy, the energy dissipated by drag and damping and the barrier (or
-    penalty) energy stored in contact (time_history.csv). 'remainder' is
-    what the first two supplied and the others do not hold: the friction's
-    dissipation and the integrator's error."""
+    energy, the energy dissipated by drag, damping and friction and the
+    barrier (or penalty) energy stored in contact (time_history.csv).
+    'remainder' is what the first two supplied and the others do not hold:
+    the integrator's error."""
     last = history[-1]
     works = {int(r["obstacle"]): float(r["work"]) for r in forces
              if r["step"] == last["step"] and int(r["obstacle"]) > 0}
