@@ -79,7 +79,9 @@ coshell_iol_test(iol.figures check_iol_figures.py compression_iso11979.prm
 # the compression scene: one 'step' line per step (time, the force on
 # each of the 2 clamps, the centroid, the real-time factor), 'done' per
 # target, an error line for the bad one, nothing else on stdout, and the
-# run ends at 0.3 s. The session again with Output/Steps between history
+# run ends at 0.3 s; each force as contact_forces.csv gives it and each
+# centroid as the mean of the vertices of the VTU of that step (steps 4,
+# 8 and 12), to the printed digits. The session again with Output/Steps between history
 # rows = 5 (what a haptic loop would set): time_history.csv holds the
 # full run's rows of steps 5 and 10 and of the last step, 12, where 'quit'
 # ends the run, each the same to the digit; summary.json's quantities

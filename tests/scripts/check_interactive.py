@@ -18,8 +18,15 @@ import math
 import os
 import shutil
 import subprocess
+import sys
+
+import numpy as np
 
 from scene_runner import exit_with, read_rows
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)),
+                                "..", "..", "doc", "scripts"))
+import render_vtu  # noqa: E402
 
 SESSION = "0.1\n# a comment\nnot-a-time\n0.3\n0.2\nquit\n0.5\n"
 
@@ -68,10 +75,13 @@ def main():
                                           static_stage=args.static_stage,
                                           settings=args.set)]
         exit_with(failures)
-    run = run_session(args.coshell, args.prm, args.output, args.set)
+    # This session writes its VTU, against which its centroids are checked.
+    run = run_session(args.coshell, args.prm, args.output,
+                      args.set + ["Output/Write VTU=true"])
     failures = session_failures(run, args.output, args.obstacles,
                                 ["0.1", "0.3", "0.3"], 0.3,
                                 bad_line="not-a-time", settings=args.set)
+    failures += centroid_failures(run, args.output)
     if args.history_rows and not failures:
         n_steps = sum(line.startswith("step ")
                       for line in run.stdout.splitlines())
@@ -146,6 +156,38 @@ def input_directions(settings):
             norm = sum(x * x for x in vector) ** 0.5
             directions[int(words[1].split()[-1])] = [x / norm for x in vector]
     return directions
+
+
+def centroid_failures(run, output):
+    """Each step line's centroid against the mean of the shell's vertices,
+    each once, in the VTU written at that step's time (the VTU repeats a
+    vertex in every cell; its single precision and the line's 6 digits
+    bound the difference). Some step must have a VTU."""
+    steps = [l.split() for l in run.stdout.splitlines()
+             if l.startswith("step ")]
+    pvd = os.path.join(output, "solution.pvd")
+    if not os.path.exists(pvd):
+        return ["no solution.pvd to check the centroids against"]
+    by_time = {float(s[2]): s for s in steps}
+    failures, checked = [], 0
+    for frame in render_vtu.read_pvd(pvd):
+        fields = by_time.get(frame.time)
+        if fields is None:
+            continue
+        mesh = render_vtu.read_vtu(frame.shell_file)
+        _, first = np.unique(mesh.points, axis=0, return_index=True)
+        mean = render_vtu.deformed_positions(mesh, 1.0)[first].mean(axis=0)
+        printed = np.array([float(f) for f in fields[-4:-1]])
+        checked += 1
+        tolerance = 1e-5 * np.abs(mean).max() + 1e-6
+        if np.abs(printed - mean).max() > tolerance:
+            failures.append(f"step {fields[1]}: centroid {printed} printed, "
+                            f"{mean} in {os.path.basename(frame.shell_file)}")
+    print(f"step lines' centroids: {checked} checked against the VTU, "
+          f"{len(failures)} differ")
+    if not checked:
+        failures.append("no VTU was written at a step line's time")
+    return failures[:5]
 
 
 def step_force_failures(steps, output, directions):
