@@ -42,9 +42,12 @@ coshell_haptic_test(iol.haptic_compression.modified_l.andes andes
 # (ISO 11979-3): the barrier's gap stays non-negative at every step, the
 # two clamp forces balance within 1 % (quasi-static equilibrium), the
 # force grows with the compression and ends finite and positive.
-# The force curve is written to compression.csv (mN against mm).
+# The force curve is written to compression.csv (mN against mm) and
+# drawn, as doc/validation/iol/compression.png, into
+# build/tests/output/iol.compression_iso11979/compression.png.
 coshell_iol_test(iol.compression_iso11979 check_compression.py
-                 compression_iso11979.prm --set ${no_vtu})
+                 compression_iso11979.prm --set ${no_vtu}
+                 --plot ${CMAKE_CURRENT_BINARY_DIR}/output/iol.compression_iso11979/compression.png)
 # The same with Linear solver/Reuse factorization: the same assertions,
 # and some solves used kept factors (UMFPACK's: the consistent tangent is
 # not symmetric). A solver that ignored the request, as CHOLMOD did until
