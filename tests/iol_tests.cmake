@@ -92,6 +92,16 @@ coshell_iol_test(iol.figures check_iol_figures.py compression_iso11979.prm
 coshell_iol_test(iol.interactive_protocol check_interactive.py
                  compression_iso11979.prm --obstacles 2 --history-rows 5)
 
+# The coarse lens of the injection's ctests (203 triangles).
+set(coarse_lens "Mesh/Gmsh parameters=optic_mesh_size = 0.9, haptic_mesh_size = 0.35")
+# The same scripted session on the injection scene (coarse lens, the
+# first 0.3 s of the fold): 'step' lines with the forces on its 6
+# obstacles (cartridge, plunger, bag, the two wings, the rod) as
+# contact_forces.csv gives them and the centroids of its VTU (steps 10,
+# 20 and 24 when written), the 'done' and error lines, the end at 0.3 s.
+coshell_iol_test(iol.interactive_injection check_interactive.py
+                 injection.prm --obstacles 6 --set ${coarse_lens})
+
 # The plunger driven by a device (fold to 1.3 s, 1 mm of input by 1.5 s,
 # then one step of 0.1 ms): the slope line's dF/ds against the central
 # difference of three sessions whose last input differs by +-1e-6 mm.
@@ -163,7 +173,6 @@ coshell_bad_input_test(iol_plunger_backwards
 # barrier's energy within 2 %.
 # Draws the folded lens (the paper's Fig. 4) into
 # build/tests/output/iol.injection.fold/png/.
-set(coarse_lens "Mesh/Gmsh parameters=optic_mesh_size = 0.9, haptic_mesh_size = 0.35")
 set(frictionless
     --set "Contact/Obstacle 1/Friction coefficient=0"
     --set "Contact/Obstacle 2/Friction coefficient=0"
