@@ -4,6 +4,7 @@
 
 #include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/utilities.h>
+#include <deal.II/lac/lapack_full_matrix.h>
 
 #include <algorithm>
 #include <cmath>
@@ -62,7 +63,11 @@ namespace coshell::model
         "vertex centroid from the axis (length), name_axial, its position "
         "along the axis from the centre (length), and name_tilt, the angle "
         "between the axis and the normal of the plane fitted to the "
-        "region's vertices by least squares (degrees, 0 to 90).");
+        "region's vertices by least squares (degrees, 0 to 90), and "
+        "name_shape_deviation, the largest distance of a vertex of the "
+        "region from the rigid motion of its reference shape that fits "
+        "it best in least squares (length: how far the region is "
+        "deformed).");
     prm.declare_entry("Reference values", "",
                       Patterns::Map(Patterns::Anything(), Patterns::Double()),
                       "Reference value per quantity name ('name: value, "
@@ -168,32 +173,88 @@ namespace coshell::model
     }
   }
 
+  namespace
+  {
+    /// The vertices of the cells of one material id, each once.
+    std::vector<unsigned int> region_vertices(const mesh::Surface &surface,
+                                              unsigned int         region)
+    {
+      std::vector<bool> in_region(surface.n_vertices(), false);
+      for (const auto &cell : surface.active_cell_iterators())
+        if (cell->material_id() == region)
+          for (const unsigned int v : cell->vertex_indices())
+            in_region[cell->vertex_index(v)] = true;
+      std::vector<unsigned int> vertices;
+      for (unsigned int v = 0; v < surface.n_vertices(); ++v)
+        if (in_region[v])
+          vertices.push_back(v);
+      return vertices;
+    }
+
+    Point<3> centroid_of(const std::vector<Point<3>> &points)
+    {
+      Point<3> centroid;
+      for (const auto &x : points)
+        centroid += x / static_cast<double>(points.size());
+      return centroid;
+    }
+
+    /// Largest distance of 'current' from the rigid motion of 'reference'
+    /// that fits it best in least squares (Kabsch: the rotation V D U^T
+    /// from the SVD U S V^T of the cross-covariance, D turning a
+    /// reflection into a rotation).
+    double rigid_fit_deviation(const std::vector<Point<3>> &reference,
+                               const std::vector<Point<3>> &current)
+    {
+      const Point<3>           from = centroid_of(reference);
+      const Point<3>           to   = centroid_of(current);
+      LAPACKFullMatrix<double> covariance(3, 3);
+      for (unsigned int i = 0; i < reference.size(); ++i)
+        for (unsigned int j = 0; j < 3; ++j)
+          for (unsigned int k = 0; k < 3; ++k)
+            covariance(j, k) +=
+                (reference[i][j] - from[j]) * (current[i][k] - to[k]);
+      covariance.compute_svd();
+      Tensor<2, 3> u, v;
+      for (unsigned int j = 0; j < 3; ++j)
+        for (unsigned int k = 0; k < 3; ++k)
+        {
+          u[j][k] = covariance.get_svd_u()(j, k);
+          v[j][k] = covariance.get_svd_vt()(k, j);
+        }
+      Tensor<2, 3> reflection     = unit_symmetric_tensor<3>();
+      reflection[2][2]            = determinant(v * transpose(u)) < 0 ? -1 : 1;
+      const Tensor<2, 3> rotation = v * reflection * transpose(u);
+      double             largest  = 0;
+      for (unsigned int i = 0; i < reference.size(); ++i)
+        largest = std::max(
+            largest,
+            (rotation * (reference[i] - from) - (current[i] - to)).norm());
+      return largest;
+    }
+  } // namespace
+
   void
   QuantitiesOfInterest::add_region_pose(const RegionPose              &pose,
                                         const ShellModel              &model,
                                         const Vector<double>          &solution,
                                         std::map<std::string, double> &values)
   {
-    const auto       &surface = model.surface();
-    std::vector<bool> in_region(surface.n_vertices(), false);
-    for (const auto &cell : surface.active_cell_iterators())
-      if (cell->material_id() == pose.region)
-        for (const unsigned int v : cell->vertex_indices())
-          in_region[cell->vertex_index(v)] = true;
-    std::vector<Point<3>> positions;
-    for (unsigned int v = 0; v < surface.n_vertices(); ++v)
-      if (in_region[v])
-        positions.push_back(surface.get_vertices()[v] +
-                            vertex_block(solution, model.vertex_dofs(v), ux));
-    if (positions.size() < 3)
+    const auto &surface  = model.surface();
+    const auto  vertices = region_vertices(surface, pose.region);
+    if (vertices.size() < 3)
       throw std::runtime_error(
           "Quantities of interest/Region poses: " + pose.name +
-          ": the mesh has fewer than three "
-          "vertices in region " +
+          ": the mesh has fewer than three vertices in region " +
           std::to_string(pose.region));
-    Point<3> centroid;
-    for (const auto &x : positions)
-      centroid += x / static_cast<double>(positions.size());
+    std::vector<Point<3>> reference, positions;
+    for (const unsigned int v : vertices)
+    {
+      reference.push_back(surface.get_vertices()[v]);
+      positions.push_back(reference.back() +
+                          vertex_block(solution, model.vertex_dofs(v), ux));
+    }
+    const Point<3>        centroid = centroid_of(positions);
     SymmetricTensor<2, 3> scatter;
     for (const auto &x : positions)
       scatter += symmetrize(outer_product(x - centroid, x - centroid));
@@ -207,6 +268,8 @@ namespace coshell::model
     values[pose.name + "_tilt"] =
         std::acos(std::min(1.0, std::abs(normal * pose.axis))) * 180 /
         numbers::PI;
+    values[pose.name + "_shape_deviation"] =
+        rigid_fit_deviation(reference, positions);
   }
 
   void QuantitiesOfInterest::check_defined(const std::string &name,
@@ -218,7 +281,8 @@ namespace coshell::model
     for (const auto &m : maximum_values_)
       known = known || m.name == name;
     for (const auto &pose : region_poses_)
-      for (const char *measure : {"_decentration", "_axial", "_tilt"})
+      for (const char *measure :
+           {"_decentration", "_axial", "_tilt", "_shape_deviation"})
         known = known || pose.name + measure == name;
     if (!known)
       throw std::invalid_argument("Quantities of interest/" + parameter +

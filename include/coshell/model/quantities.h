@@ -68,7 +68,8 @@ namespace coshell::model
     void check_defined(const std::string &name,
                        const std::string &parameter) const;
     void parse_region_poses(const std::string &text);
-    /// name_decentration, name_tilt and name_axial of 'pose' into 'values'.
+    /// name_decentration, name_tilt, name_axial and name_shape_deviation
+    /// of 'pose' into 'values'.
     static void add_region_pose(const RegionPose              &pose,
                                 const ShellModel              &model,
                                 const dealii::Vector<double>  &solution,
