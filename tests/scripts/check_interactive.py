@@ -176,10 +176,15 @@ def centroid_failures(run, output):
             continue
         mesh = render_vtu.read_vtu(frame.shell_file)
         _, first = np.unique(mesh.points, axis=0, return_index=True)
-        mean = render_vtu.deformed_positions(mesh, 1.0)[first].mean(axis=0)
+        positions = render_vtu.deformed_positions(mesh, 1.0)[first]
+        mean = positions.mean(axis=0)
         printed = np.array([float(f) for f in fields[-4:-1]])
         checked += 1
-        tolerance = 1e-5 * np.abs(mean).max() + 1e-6
+        # The line's 6 digits, and the VTU's single precision: half a unit
+        # in the 24th bit of the largest coordinate, for the reference
+        # point and the displacement each.
+        tolerance = (1e-5 * np.abs(mean).max()
+                     + 2 * np.abs(positions).max() * 2.0**-24)
         if np.abs(printed - mean).max() > tolerance:
             failures.append(f"step {fields[1]}: centroid {printed} printed, "
                             f"{mean} in {os.path.basename(frame.shell_file)}")
