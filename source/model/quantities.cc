@@ -157,12 +157,12 @@ namespace coshell::model
       for (std::string token; in >> token;)
         numbers.push_back(io::evaluate_constant_expression(
             token, io::expression_constants(), where + ": " + name));
-      const bool is_region = numbers.size() == 7 && numbers[0] >= 0 &&
-                             numbers[0] == std::floor(numbers[0]);
-      const Tensor<1, 3> axis({numbers.size() == 7 ? numbers[4] : 0,
-                               numbers.size() == 7 ? numbers[5] : 0,
-                               numbers.size() == 7 ? numbers[6] : 0});
-      if (!is_region || axis.norm() == 0)
+      const bool malformed = numbers.size() != 7 || numbers[0] < 0 ||
+                             numbers[0] != std::floor(numbers[0]);
+      const Tensor<1, 3> axis =
+          malformed ? Tensor<1, 3>()
+                    : Tensor<1, 3>({numbers[4], numbers[5], numbers[6]});
+      if (axis.norm() == 0)
         throw std::invalid_argument(
             where + ": '" + spec +
             "' is not 'region cx cy cz ax ay az' (a material id, a point "
