@@ -277,6 +277,19 @@ coshell_bad_input_test(contact_shell_starts_inside
 coshell_bad_input_test(contact_zero_input_direction
   "Contact/Obstacle 1/Input direction: must not be zero"
   ${plane_scene} --set "Contact/Obstacle 1/Input direction=0, 0, 0")
+# An obstacle's Force file needs its direction, is a name beside the
+# run's own CSV files (not a path, not one of them) and is one obstacle's.
+coshell_bad_input_test(contact_force_file_without_direction
+  "Contact/Obstacle 1/Force direction: required with a Force file"
+  ${plane_scene} --set "Contact/Obstacle 1/Force file=plane_force.csv")
+coshell_bad_input_test(contact_force_file_is_a_path
+  "Contact/Obstacle 1/Force file: 'forces/plane.csv' is a path"
+  ${plane_scene} --set "Contact/Obstacle 1/Force file=forces/plane.csv"
+  --set "Contact/Obstacle 1/Force direction=0, 0, 1")
+coshell_bad_input_test(contact_force_file_is_the_runs_own
+  "Contact/Obstacle 1/Force file: 'contact_forces.csv' is a file the run writes itself"
+  ${plane_scene} --set "Contact/Obstacle 1/Force file=contact_forces.csv"
+  --set "Contact/Obstacle 1/Force direction=0, 0, 1")
 coshell_bad_input_test(contact_input_with_checkpoints
   "Output/Checkpoint interval: a checkpoint would not hold the input"
   ${plane_scene} --interactive --set "Analysis/Type=dynamic"
@@ -394,13 +407,15 @@ coshell_bad_input_test(contact_shell_starts_in_self_contact "the shell starts in
 # bookkeeping and friction's lagged normal forces are in the checkpoint,
 # so a run resumed from the middle one, or after SIGINT, ends in the
 # uninterrupted run's state to 1e-12 (measured: bit for bit), with the same
-# time_history.csv and contact_forces.csv rows.
+# time_history.csv, contact_forces.csv and plunger Force file rows.
 add_test(NAME restart.funnel_friction
   COMMAND ${COSHELL_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_restart.py
           --coshell $<TARGET_FILE:coshell> --prm ${COSHELL_PRM}/${funnel}
           --output ${CMAKE_CURRENT_BINARY_DIR}/output/restart.funnel_friction
           --set "Output/Write VTU=false"
           --set "Contact/Obstacle 1/Friction coefficient=0.1"
+          --set "Contact/Obstacle 2/Force file=plunger_force.csv"
+          --set "Contact/Obstacle 2/Force direction=1, 0, 0"
           --end 0.4 --interval 0.1 --tolerance 1e-12)
 set_tests_properties(restart.funnel_friction PROPERTIES LABELS contact)
 

@@ -150,6 +150,10 @@ coshell_bad_input_test(iol_nozzle_narrower_than_two_haptics
   "Contact/Obstacle 1 .'cartridge'.: gmsh could not mesh .*injector.geo': Error.*nozzle's inner diameter 2 . nozzle_radius = 1.7 mm is not wider than twice the haptic thickness .haptic_thickness = 0.9 mm"
   ${injection} --set "Constants/Values=plunger_speed = 5, plunger_start = -6.9, nozzle_tip = 15, haptic_thickness = 0.9, fold_time = 1.0, rod_out_time = 1.3, push_time = rod_out_time + (nozzle_tip - plunger_start) / plunger_speed, axis_height = 1.5, bag_x = 17.2"
   --set "Contact/Obstacle 1/Gmsh parameters=nozzle_tip = nozzle_tip, nozzle_radius = 0.85, haptic_thickness = haptic_thickness")
+coshell_bad_input_test(iol_two_obstacles_one_force_file
+  "Contact: obstacles 'plunger' and 'holding rod' have the same Force file 'plunger_force.csv'"
+  ${injection} --set "Contact/Obstacle 6/Force file=plunger_force.csv"
+  --set "Contact/Obstacle 6/Force direction=0, 0, 1")
 coshell_bad_input_test(iol_stage_duration_unknown_constant
   "Stage 2/Duration: cannot evaluate 'push_tim - rod_out_time'"
   ${injection} --set "Stage 2/Duration=push_tim - rod_out_time")

@@ -222,6 +222,36 @@ namespace coshell::contact
       return area;
     }
 
+    /// Force file and Force direction. The file is a plain name: the run
+    /// writes it beside its own CSV files, whose names it may not take.
+    void parse_force_file(ParameterHandler  &prm,
+                          const std::string &where,
+                          Obstacle          &obstacle)
+    {
+      obstacle.force_file         = Utilities::trim(prm.get("Force file"));
+      const std::string direction = Utilities::trim(prm.get("Force direction"));
+      if (obstacle.force_file.empty())
+        return;
+      const std::string file = where + "/Force file: '" + obstacle.force_file;
+      if (obstacle.force_file.find('/') != std::string::npos)
+        throw std::invalid_argument(file + "' is a path; give a file name, "
+                                           "written to the output directory");
+      for (const char *taken : {"time_history.csv", "contact_forces.csv",
+                                "newton_history.csv", "load_displacement.csv"})
+        if (obstacle.force_file == taken)
+          throw std::invalid_argument(file + "' is a file the run writes "
+                                             "itself; choose another name");
+      if (direction.empty())
+        throw std::invalid_argument(where + "/Force direction: required with "
+                                            "a Force file ('a, b, c')");
+      obstacle.force_direction =
+          model::parse_three_numbers(direction, where + "/Force direction");
+      if (obstacle.force_direction.norm() == 0)
+        throw std::invalid_argument(where +
+                                    "/Force direction: must not be zero");
+      obstacle.force_direction /= obstacle.force_direction.norm();
+    }
+
     Obstacle parse_obstacle(ParameterHandler  &prm,
                             const std::string &file,
                             const std::string &where)
@@ -242,6 +272,7 @@ namespace coshell::contact
           throw std::invalid_argument(where +
                                       "/Input direction: must not be zero");
       }
+      parse_force_file(prm, where, obstacle);
       obstacle.friction_coefficient = prm.get_double("Friction coefficient");
       obstacle.offset               = prm.get_double("Offset");
       if (!(obstacle.friction_coefficient >= 0))
@@ -280,6 +311,20 @@ namespace coshell::contact
           "units) at time t (s), linearly from the present, on top of its "
           "Translation and Rotation: a haptic device drives it. Empty: the "
           "obstacle takes no input.");
+      prm.declare_entry(
+          "Force file", "", Patterns::Anything(),
+          "A CSV file written to the output directory, one row per step "
+          "with a contact_forces.csv row: 'time' (s), "
+          "'<Name>_displacement' (length units: how far the obstacle's "
+          "centroid has moved along Force direction since t = 0) and "
+          "'force_n' (force units, N in mm-N-s-tonne scenes: the contact "
+          "and friction force the obstacle exerts on the shell along Force "
+          "direction; positive where it pushes). Characters of the Name "
+          "other than letters and digits become '_'. Empty: none.");
+      prm.declare_entry("Force direction", "", Patterns::Anything(),
+                        "'a, b, c' (dimensionless, normalized): the "
+                        "direction Force file measures along; required "
+                        "with it.");
       prm.declare_entry("Friction coefficient", "0", Patterns::Double(),
                         "Coulomb friction coefficient mu against the shell "
                         "(dimensionless, >= 0).");
@@ -290,6 +335,21 @@ namespace coshell::contact
       prm.leave_subsection();
     }
   }
+
+  namespace
+  {
+    void check_force_files_distinct(const std::vector<Obstacle> &obstacles)
+    {
+      for (unsigned int a = 0; a < obstacles.size(); ++a)
+        for (unsigned int b = a + 1; b < obstacles.size(); ++b)
+          if (!obstacles[a].force_file.empty() &&
+              obstacles[a].force_file == obstacles[b].force_file)
+            throw std::invalid_argument(
+                "Contact: obstacles '" + obstacles[a].name + "' and '" +
+                obstacles[b].name + "' have the same Force file '" +
+                obstacles[a].force_file + "'");
+    }
+  } // namespace
 
   std::vector<Obstacle>
   ObstacleParameters::parse_parameters(ParameterHandler  &prm,
@@ -319,6 +379,7 @@ namespace coshell::contact
       }
       prm.leave_subsection();
     }
+    check_force_files_distinct(obstacles);
     return obstacles;
   }
 } // namespace coshell::contact

@@ -591,6 +591,15 @@ namespace coshell::driver
         row.push_back(moved[d]);
       out.contact_forces->row(row);
     }
+    for (auto &[o, file] : out.obstacle_force_files)
+    {
+      const Tensor<1, 3> &direction =
+          out.contact->obstacles()[o].force_direction;
+      // loads[o].force is the shell's push on the obstacle ('0 -' writes
+      // no force as 0, not -0).
+      file.row({time, out.contact->obstacle_displacement(o) * direction,
+                0.0 - loads[o].force * direction});
+    }
     // Self contact: obstacle 0, no net force (internal to the shell).
     if (out.contact->self_contact())
       out.contact_forces->row({double(step), time, 0, 0, 0, 0, 0, 0, 0,
@@ -1243,6 +1252,31 @@ namespace coshell::driver
     return result;
   }
 
+  namespace
+  {
+    /// The Name with every character but letters and digits as '_'.
+    std::string column_name(std::string name)
+    {
+      for (char &c : name)
+        if (!std::isalnum(static_cast<unsigned char>(c)))
+          c = '_';
+      return name;
+    }
+  } // namespace
+
+  void Scene::open_obstacle_force_files(StagedOutput      &out,
+                                        const std::string &directory) const
+  {
+    const auto &obstacles = out.contact->obstacles();
+    for (unsigned int o = 0; o < obstacles.size(); ++o)
+      if (!obstacles[o].force_file.empty())
+        out.obstacle_force_files.emplace_back(
+            o, io::CsvFile(directory + "/" + obstacles[o].force_file,
+                           {"time",
+                            column_name(obstacles[o].name) + "_displacement",
+                            "force_n"}));
+  }
+
   std::unique_ptr<contact::Contact>
   Scene::start_contact(const model::ShellModel &model,
                        const model::ShellState &state,
@@ -1263,6 +1297,7 @@ namespace coshell::driver
         std::vector<std::string>{"step", "time", "obstacle", "fx", "fy", "fz",
                                  "mx", "my", "mz", "active_pairs",
                                  "min_distance", "work", "ux", "uy", "uz"});
+    open_obstacle_force_files(out, directory);
     return contact;
   }
 
@@ -1357,6 +1392,8 @@ namespace coshell::driver
       write_step(model, state, out, directory, out.step, end_time);
     out.curve.finish();
     out.history.finish();
+    for (auto &[o, file] : out.obstacle_force_files)
+      file.finish();
     if (out.contact_forces)
     {
       out.contact_forces->finish();

@@ -14,15 +14,33 @@
 #include <filesystem>
 #include <iomanip>
 #include <sstream>
+#include <type_traits>
 
 namespace coshell::driver
 {
   namespace
   {
-    /// The CSV files a staged run writes, in the order of csv_rows.
+    /// The CSV files a staged run writes, in the order of csv_rows, before
+    /// the obstacles' Force files.
     const std::vector<std::string> csv_files = {
         "load_displacement.csv", "newton_history.csv", "time_history.csv",
         "contact_forces.csv"};
+
+    /// The run's CSV files in the order of staged_csv_files(), null where
+    /// the run does not write one; const or not as 'out' is.
+    template<typename Output>
+    auto csv_outputs(Output &out)
+    {
+      using File                = std::conditional_t<std::is_const_v<Output>,
+                                      const io::CsvFile, io::CsvFile>;
+      std::vector<File *> files = {
+          &out.curve, &out.history,
+          out.time_history ? &*out.time_history : nullptr,
+          out.contact_forces ? &*out.contact_forces : nullptr};
+      for (auto &[o, file] : out.obstacle_force_files)
+        files.push_back(&file);
+      return files;
+    }
 
     std::string checkpoint_name(unsigned int step)
     {
@@ -68,15 +86,26 @@ namespace coshell::driver
     return restart_ && stage_number < restart_->stage;
   }
 
+  std::vector<std::string> Scene::staged_csv_files() const
+  {
+    std::vector<std::string> files = csv_files;
+    if (contact_.enabled())
+      for (const auto &obstacle : contact_.obstacles)
+        if (!obstacle.force_file.empty())
+          files.push_back(obstacle.force_file);
+    return files;
+  }
+
   std::vector<std::string> Scene::read_earlier_outputs() const
   {
-    std::vector<std::string> texts(csv_files.size());
+    const auto               files = staged_csv_files();
+    std::vector<std::string> texts(files.size());
     if (!restart_)
       return texts;
     const std::string directory = earlier_directory(restart_file_);
-    for (unsigned int k = 0;
-         k < csv_files.size() && k < restart_->csv_rows.size(); ++k)
-      texts[k] = io::read_earlier_rows(directory + "/" + csv_files[k],
+    for (unsigned int k = 0; k < files.size() && k < restart_->csv_rows.size();
+         ++k)
+      texts[k] = io::read_earlier_rows(directory + "/" + files[k],
                                        restart_->csv_rows[k]);
     return texts;
   }
@@ -107,12 +136,9 @@ namespace coshell::driver
     carry_ = {model.from_vertex_order(c.pseudo_acceleration), c.step_size};
     if (out.contact)
       restore_contact(c, state, out);
-    io::CsvFile *files[] = {&out.curve, &out.history,
-                            out.time_history ? &*out.time_history : nullptr,
-                            out.contact_forces ? &*out.contact_forces
-                                               : nullptr};
-    bool         carried = true;
-    for (unsigned int k = 0; k < earlier.size(); ++k)
+    const auto files   = csv_outputs(out);
+    bool       carried = true;
+    for (unsigned int k = 0; k < earlier.size() && k < files.size(); ++k)
       if (files[k] && !earlier[k].empty())
         carried = files[k]->resume(earlier[k]) && carried;
       else if (files[k] && k < c.csv_rows.size() && c.csv_rows[k] > 0)
@@ -174,9 +200,8 @@ namespace coshell::driver
     c.dissipated_energy       = out.dissipated_energy;
     c.generalized_force       = model.to_vertex_order(out.generalized_force);
     c.damping_force           = model.to_vertex_order(out.damping_force);
-    c.csv_rows                = {out.curve.rows(), out.history.rows(),
-                  out.time_history ? out.time_history->rows() : 0u,
-                  out.contact_forces ? out.contact_forces->rows() : 0u};
+    for (const io::CsvFile *file : csv_outputs(out))
+      c.csv_rows.push_back(file ? file->rows() : 0u);
     if (out.contact)
     {
       c.arrays                   = out.contact->checkpoint_arrays();

@@ -11,6 +11,8 @@
 
 #include <limits>
 #include <optional>
+#include <utility>
+#include <vector>
 
 namespace coshell::driver
 {
@@ -25,6 +27,8 @@ namespace coshell::driver
 
     io::CsvFile                curve, history;
     std::optional<io::CsvFile> time_history, contact_forces;
+    /// Contact/Obstacle k/Force file: obstacle k - 1 and its file.
+    std::vector<std::pair<unsigned int, io::CsvFile>> obstacle_force_files;
     /// The contact of the run (nullptr when Contact is off), and the
     /// extremes of its gap over every iterate of the run.
     contact::Contact *contact      = nullptr;

@@ -25,8 +25,8 @@ With --fold-only WIDTH the run is the fold stage alone: the gaps, the
 energy and the optic's width at the end (<= WIDTH) are checked and the
 folded lens is drawn.
 
-Writes plunger_force.csv (time, plunger_displacement, force_n) and, with
---figures, the PNGs: the plunger force, strains and smallest gap against
+Checks coshell's plunger_force.csv (time, plunger_displacement, force_n)
+against contact_forces.csv and, with --figures, writes the PNGs: the plunger force, strains and smallest gap against
 time, the folded lens (the paper's Fig. 4) and the deployment sequence.
 Reports the optic's decentration and tilt in the bag and the real-time
 factor.
@@ -98,11 +98,26 @@ def plunger_rows(forces, plunger):
     return rows, time, column(rows, "ux"), push, column(rows, "work")
 
 
-def write_plunger_csv(path, time, displacement, push):
-    with open(path, "w") as f:
-        f.write("time,plunger_displacement,force_n\n")
-        for t, u, p in zip(time, displacement, push):
-            f.write(f"{t:.9g},{u:.9g},{p:.9g}\n")
+def check_plunger_csv(checks, output, time, displacement, push):
+    """coshell's plunger_force.csv (Contact/Obstacle 2/Force file) against
+    the plunger's rows of contact_forces.csv: its header is the issue's,
+    and its rows are their time, x displacement and -fx (both files print
+    12 digits)."""
+    path = os.path.join(output, "plunger_force.csv")
+    with open(path) as f:
+        header = f.readline().strip()
+    rows = read_rows(path)
+    expected = np.column_stack([time, displacement, push])
+    written = np.array([[float(r[k]) for k in
+                         ("time", "plunger_displacement", "force_n")]
+                        for r in rows]) if rows else np.zeros((0, 3))
+    same = written.shape == expected.shape and np.allclose(
+        written, expected, rtol=1e-11, atol=1e-15)
+    print(f"plunger_force.csv: {len(rows)} rows, header '{header}'")
+    checks("coshell's plunger_force.csv has the header time,"
+           "plunger_displacement,force_n and the plunger's rows of "
+           "contact_forces.csv",
+           header == "time,plunger_displacement,force_n" and same)
 
 
 def travel_measures(displacement, push, work, window=0.5):
@@ -131,8 +146,7 @@ def travel_measures(displacement, push, work, window=0.5):
 def check_plunger_force(checks, forces, args, output):
     _, time, displacement, push, work_so_far = plunger_rows(
         forces, args.plunger)
-    write_plunger_csv(os.path.join(output, "plunger_force.csv"), time,
-                      displacement, push)
+    check_plunger_csv(checks, output, time, displacement, push)
     largest = push.max() if len(push) else math.nan
     print(f"plunger: largest force {1e3 * largest:.4g} mN, travel "
           f"{displacement.max():.4g} mm")
@@ -306,6 +320,20 @@ def plot(args, history, time, displacement, push, chord):
     figure.suptitle(f"IOL injection: {os.path.basename(args.prm)}")
     figure.tight_layout()
     figure.savefig(os.path.join(args.figures, "injection_history.png"), dpi=110)
+    plt.close(figure)
+    plot_plunger_force(plt, args, displacement, push)
+
+
+def plot_plunger_force(plt, args, displacement, push):
+    """plunger_force.csv's picture: the force against the travel, the
+    curve an injector is characterized by."""
+    figure, axes = plt.subplots(figsize=(7, 4))
+    axes.plot(displacement, 1e3 * push)
+    axes.set(xlabel="plunger travel since t = 0 (mm; back out after the "
+             "stroke)", ylabel="plunger force on the lens (mN)",
+             title=f"plunger_force.csv: {os.path.basename(args.prm)}")
+    figure.tight_layout()
+    figure.savefig(os.path.join(args.figures, "plunger_force.png"), dpi=110)
     plt.close(figure)
 
 

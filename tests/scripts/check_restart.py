@@ -10,7 +10,8 @@ check_restart.py --coshell BIN --prm FILE --output DIR [--set A/B=v ...]
    rotation matrices are orthonormal, and its time is past a multiple of DT.
 2. Run B from A's middle checkpoint: B's final checkpoint equals A's to TOL
    (relative, every dataset), and B's time_history.csv has A's rows (the
-   earlier ones copied, the later ones recomputed; 12 printed digits).
+   earlier ones copied, the later ones recomputed; 12 printed digits), as
+   have its contact_forces.csv and plunger_force.csv where A wrote them.
 3. Run C to T and stop it with SIGINT half-way: exit status 3, a checkpoint
    named in its message, no summary.json and no finished time_history.csv.
    Run D from that checkpoint into C's directory: D's final checkpoint equals
@@ -118,7 +119,8 @@ def rows(directory, name):
 
 
 def compare_histories(a, b, what):
-    for name in ("time_history.csv", "contact_forces.csv"):
+    for name in ("time_history.csv", "contact_forces.csv",
+                 "plunger_force.csv"):
         if not os.path.exists(os.path.join(a, name)):
             continue
         ra, rb = rows(a, name), rows(b, name)

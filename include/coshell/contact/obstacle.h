@@ -46,6 +46,11 @@ namespace coshell::contact
     /// moves by input->value(t) times this vector (zero: not driven).
     dealii::Tensor<1, 3>             input_direction;
     std::shared_ptr<const InputPath> input;
+    /// Contact/Obstacle k/Force file and Force direction (unit vector):
+    /// the CSV of the obstacle's travel and push along that direction
+    /// written to the output directory ("" for none).
+    std::string          force_file;
+    dealii::Tensor<1, 3> force_direction;
 
     /// Vertex positions at time t.
     std::vector<dealii::Point<3>> positions(double time) const;

@@ -156,6 +156,9 @@ namespace coshell::driver
                   const model::ShellState &state,
                   StagedOutput            &out,
                   const std::string       &directory) const;
+    /// Opens the Contact/Obstacle k/Force file of every obstacle with one.
+    void open_obstacle_force_files(StagedOutput      &out,
+                                   const std::string &directory) const;
     /// Builds the stage's problem on 'state' and runs it.
     void run_stage(const Stage             &stage,
                    const model::ShellModel &model,
@@ -180,7 +183,8 @@ namespace coshell::driver
                     const std::string       &directory,
                     unsigned int             step,
                     double                   time);
-    /// Appends the step's rows to contact_forces.csv.
+    /// Appends the step's rows to contact_forces.csv and the obstacles'
+    /// Force files.
     void
     record_contact(StagedOutput &out, unsigned int step, double time) const;
     std::map<std::string, double>
@@ -224,12 +228,14 @@ namespace coshell::driver
     void finish_dynamic_stage(DynamicStageRun &run, double reached);
     bool has_dynamic_stage() const;
     /// Checkpointing (scene_checkpoint.cc): the earlier run's CSV rows
-    /// up to the restart's step (curve, Newton history, time history), read
+    /// up to the restart's step (curve, Newton history, time history,
+    /// contact forces, the obstacles' Force files), read
     /// before this run overwrites those files; the restored state and
     /// outputs; the checkpoint after a dynamic step when one is due or a
     /// signal came (then throws Interrupted); the signal check of static
     /// steps.
     std::vector<std::string> read_earlier_outputs() const;
+    std::vector<std::string> staged_csv_files() const;
     void                     restore_checkpoint(model::ShellState              &state,
                                                 StagedOutput                   &out,
                                                 const std::vector<std::string> &earlier,
