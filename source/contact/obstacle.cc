@@ -245,7 +245,7 @@ namespace coshell::contact
         throw std::invalid_argument(where + "/Force direction: required with "
                                             "a Force file ('a, b, c')");
       obstacle.force_direction =
-          model::parse_three_numbers(direction, where + "/Force direction");
+          model::parse_three_values(direction, where + "/Force direction");
       if (obstacle.force_direction.norm() == 0)
         throw std::invalid_argument(where +
                                     "/Force direction: must not be zero");
@@ -267,7 +267,7 @@ namespace coshell::contact
       if (!direction.empty())
       {
         obstacle.input_direction =
-            model::parse_three_numbers(direction, where + "/Input direction");
+            model::parse_three_values(direction, where + "/Input direction");
         if (obstacle.input_direction.norm() == 0)
           throw std::invalid_argument(where +
                                       "/Input direction: must not be zero");

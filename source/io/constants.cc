@@ -149,6 +149,16 @@ namespace coshell::io
     return named_values;
   }
 
+  std::vector<double> parse_constant_list(const std::string &text,
+                                          const std::string &where)
+  {
+    std::vector<double> values;
+    for (const std::string &entry : split_entries(text))
+      values.push_back(evaluate_constant_expression(
+          Utilities::trim(entry), expression_constants(), where));
+    return values;
+  }
+
   void Constants::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Constants");

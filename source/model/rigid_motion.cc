@@ -1,4 +1,5 @@
 #include <coshell/element/corotational.h>
+#include <coshell/io/constants.h>
 #include <coshell/io/expressions.h>
 #include <coshell/model/rigid_motion.h>
 
@@ -10,24 +11,14 @@ namespace coshell::model
 {
   using namespace dealii;
 
-  Tensor<1, 3> parse_three_numbers(const std::string &text,
-                                   const std::string &where)
+  Tensor<1, 3> parse_three_values(const std::string &text,
+                                  const std::string &where)
   {
-    const auto   parts = Utilities::split_string_list(text, ',');
-    Tensor<1, 3> v;
-    try
-    {
-      if (parts.size() != 3)
-        throw std::invalid_argument("");
-      for (unsigned int d = 0; d < 3; ++d)
-        v[d] = Utilities::string_to_double(parts[d]);
-    }
-    catch (...)
-    {
+    const std::vector<double> values = io::parse_constant_list(text, where);
+    if (values.size() != 3)
       throw std::invalid_argument(where + ": '" + text +
-                                  "' is not three numbers 'a, b, c'");
-    }
-    return v;
+                                  "' is not three values 'a, b, c'");
+    return Tensor<1, 3>({values[0], values[1], values[2]});
   }
 
   void RigidMotion::declare_entries(ParameterHandler &prm)
@@ -42,7 +33,9 @@ namespace coshell::model
                       "angle(t): muparser expression of t (s), in rad "
                       "(pi is defined).");
     prm.declare_entry("Rotation centre", "0, 0, 0", Patterns::Anything(),
-                      "A point on the rotation axis, in length units.");
+                      "A point on the rotation axis, in length units; "
+                      "each coordinate a number or an expression of the "
+                      "scene's Constants.");
   }
 
   void RigidMotion::parse_entries(ParameterHandler  &prm,
@@ -53,12 +46,12 @@ namespace coshell::model
     angle = io::parse_expressions<1>(prm.get("Rotation angle"), 1, "x,t", true,
                                      "t", where + "/Rotation angle");
     axis =
-        parse_three_numbers(prm.get("Rotation axis"), where + "/Rotation axis");
+        parse_three_values(prm.get("Rotation axis"), where + "/Rotation axis");
     if (axis.norm() == 0)
       throw std::invalid_argument(where + "/Rotation axis: must not be zero");
     axis /= axis.norm();
-    centre = Point<3>(parse_three_numbers(prm.get("Rotation centre"),
-                                          where + "/Rotation centre"));
+    centre = Point<3>(parse_three_values(prm.get("Rotation centre"),
+                                         where + "/Rotation centre"));
   }
 
   Tensor<1, 3> RigidMotion::rotation_vector(double time) const

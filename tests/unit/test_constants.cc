@@ -1,4 +1,5 @@
 #include <coshell/io/constants.h>
+#include <coshell/model/rigid_motion.h>
 
 #include <deal.II/base/parameter_handler.h>
 
@@ -81,5 +82,35 @@ TEST(Constants, BadValuesAreRefusedByName)
                 .find("Constants/Positive: 'sped' is not a constant"),
             std::string::npos);
   EXPECT_NE(message_of("pi = 3").find("pi is pi or given twice"),
+            std::string::npos);
+}
+
+// A point or a direction (Rotation centre, Force direction, ...) takes
+// constants too: the tuck's hinges follow its hinge_x and hinge_height.
+TEST(Constants, ThreeValuesMayBeConstantExpressions)
+{
+  parse_constants("hinge_x = 3.8, hinge_height = 0.525");
+  const auto centre = coshell::model::parse_three_values(
+      "-hinge_x, 0, max(hinge_height, 0.2)", "Rotation centre");
+  EXPECT_DOUBLE_EQ(centre[0], -3.8);
+  EXPECT_DOUBLE_EQ(centre[1], 0);
+  EXPECT_DOUBLE_EQ(centre[2], 0.525);
+  const auto message = [](const std::string &text)
+  {
+    try
+    {
+      coshell::model::parse_three_values(text, "Obstacle 3/Rotation centre");
+    }
+    catch (const std::invalid_argument &error)
+    {
+      return std::string(error.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(message("1, 2").find("Obstacle 3/Rotation centre: '1, 2' is not "
+                                 "three values 'a, b, c'"),
+            std::string::npos);
+  EXPECT_NE(message("-hinge, 0, 0")
+                .find("Obstacle 3/Rotation centre: cannot evaluate '-hinge'"),
             std::string::npos);
 }

@@ -34,6 +34,13 @@ namespace coshell::io
   std::vector<std::pair<std::string, double>>
   parse_named_values(const std::string &text, const std::string &where);
 
+  /// "a, b, ..." -> the values in order, each a number or an expression
+  /// of pi and the scene's Constants (commas inside parentheses belong to
+  /// the expression). Throws std::invalid_argument naming 'where' and the
+  /// value that cannot be evaluated.
+  std::vector<double> parse_constant_list(const std::string &text,
+                                          const std::string &where);
+
   /// 'text' as a number, or as a muparser expression of the given
   /// constants. Throws std::invalid_argument "<where>: cannot evaluate
   /// '<text>' ..." or "... is not finite".

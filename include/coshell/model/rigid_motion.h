@@ -44,7 +44,8 @@ namespace coshell::model
     Pose pose(double time) const;
   };
 
-  /// "a, b, c" -> a vector; throws std::invalid_argument naming 'where'.
-  dealii::Tensor<1, 3> parse_three_numbers(const std::string &text,
-                                           const std::string &where);
+  /// "a, b, c" -> a vector, each value a number or an expression of the
+  /// scene's Constants; throws std::invalid_argument naming 'where'.
+  dealii::Tensor<1, 3> parse_three_values(const std::string &text,
+                                          const std::string &where);
 } // namespace coshell::model
