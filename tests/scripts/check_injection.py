@@ -40,8 +40,8 @@ import sys
 
 import numpy as np
 
-from scene_runner import (Checks, add_scene_arguments, energy_balance,
-                          exit_with, read_rows, run_scene)
+from scene_runner import (add_scene_arguments, energy_balance, exit_with,
+                          read_rows, run_contact_scene)
 
 SCRIPTS = os.path.dirname(os.path.abspath(__file__))
 RENDER = os.path.join(SCRIPTS, "..", "..", "doc", "scripts", "render_vtu.py")
@@ -393,15 +393,9 @@ def check_fold(checks, history, args):
 
 def main():
     args = parse_arguments()
-    run_scene(args.coshell, args.prm, args.output, args.set)
-    checks = Checks()
-    forces = read_rows(os.path.join(args.output, "contact_forces.csv"))
-    history = read_rows(os.path.join(args.output, "time_history.csv"))
-    gaps = column(forces, "min_distance")
-    gaps = gaps[np.isfinite(gaps)]
-    print(f"smallest gap over every pair and step: {gaps.min():.4g} mm")
-    checks("every pair's gap stays >= 0 (lens against the wings, rod, "
-           "cartridge, plunger, bag and itself)", gaps.min() >= 0)
+    checks, forces, history = run_contact_scene(
+        args, "lens against the wings, rod, cartridge, plunger, bag and "
+        "itself")
     if args.fold_only is not None:
         check_fold(checks, history, args)
         check_energy(checks, history, forces, args)

@@ -2,6 +2,7 @@
 test checkers)."""
 import csv
 import json
+import math
 import os
 import shutil
 import subprocess
@@ -56,6 +57,22 @@ def read_rows(path):
     """The rows of a CSV file as dictionaries."""
     with open(path) as f:
         return list(csv.DictReader(f))
+
+
+def run_contact_scene(args, pairs):
+    """Runs the scene of 'args' (add_scene_arguments), reads its
+    contact_forces.csv and time_history.csv rows and checks that the
+    smallest gap over every pair and step stays >= 0 ('pairs' names them
+    in the check). Returns the checks, the force rows and the history."""
+    run_scene(args.coshell, args.prm, args.output, args.set)
+    checks = Checks()
+    forces = read_rows(os.path.join(args.output, "contact_forces.csv"))
+    history = read_rows(os.path.join(args.output, "time_history.csv"))
+    gaps = [float(r["min_distance"]) for r in forces]
+    gap = min([g for g in gaps if math.isfinite(g)], default=math.inf)
+    print(f"smallest gap over every pair and step: {gap:.4g} mm")
+    checks(f"every pair's gap stays >= 0 ({pairs})", gap >= 0)
+    return checks, forces, history
 
 
 def energy_balance(history, forces):
