@@ -56,10 +56,11 @@ namespace coshell::contact
     std::vector<dealii::Point<3>> positions(double time) const;
   };
 
-  /// prm subsections "Contact/Obstacle 1" ... "Obstacle 8".
+  /// prm subsections "Contact/Obstacle 1" ... "Obstacle 12" (the tuck
+  /// takes 8 tools, the injection 6).
   struct ObstacleParameters
   {
-    static constexpr unsigned int max_obstacles = 8;
+    static constexpr unsigned int max_obstacles = 12;
 
     static void declare_parameters(dealii::ParameterHandler &prm);
     /// Reads the meshes too. Throws std::runtime_error naming the obstacle
