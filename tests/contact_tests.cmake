@@ -145,11 +145,17 @@ set(funnel contact/funnel.prm)
 # Energy (frictionless): the plunger's work on the strip, from its force
 # and its prescribed displacement, equals the strip's strain and kinetic
 # energy, the drag's dissipation and the barrier's energy within 2 %
-# (measured: 0.11 %; penalty 0.03 %).
+# (measured: 0.11 %; penalty 0.03 %). The plunger's Force file along
+# (-2, 0, 1), normalized by coshell, has the plunger's rows of
+# contact_forces.csv projected on that unit vector (a consistency check
+# of two outputs).
 coshell_contact_test(contact.funnel.barrier ${funnel}
   ARGS --set "Output/Write VTU=false" --gap-nonnegative
   --force-range 2 fx -1 -0.001 --summary smallest_gap 0 1
-  --energy-balance 0.02)
+  --energy-balance 0.02
+  --set "Contact/Obstacle 2/Force file=plunger_tilted.csv"
+  --set "Contact/Obstacle 2/Force direction=-2, 0, 1"
+  --force-file plunger_tilted.csv 2 -2 0 1 plunger_displacement)
 # With friction (mu = 0.1 on funnel and plunger; converges since the
 # edge-edge pairs, not before) and the energy line search: the same
 # guarantee, the plunger pushes, and the energy balance closes with
@@ -277,13 +283,21 @@ coshell_bad_input_test(contact_shell_starts_inside
 coshell_bad_input_test(contact_zero_input_direction
   "Contact/Obstacle 1/Input direction: must not be zero"
   ${plane_scene} --set "Contact/Obstacle 1/Input direction=0, 0, 0")
-# An obstacle's Force file needs its direction, is a name beside the
-# run's own CSV files (not a path, not one of them) and is one obstacle's.
+# An obstacle's Force file needs a nonzero direction (and a direction
+# needs a file), is a plain NAME.csv beside the run's own CSV files (not a
+# path, not one of them) and is one obstacle's.
 coshell_bad_input_test(contact_force_file_without_direction
   "Contact/Obstacle 1/Force direction: required with a Force file"
   ${plane_scene} --set "Contact/Obstacle 1/Force file=plane_force.csv")
+coshell_bad_input_test(contact_force_direction_without_file
+  "Contact/Obstacle 1/Force direction: given without a Force file"
+  ${plane_scene} --set "Contact/Obstacle 1/Force direction=0, 0, 1")
+coshell_bad_input_test(contact_force_direction_zero
+  "Contact/Obstacle 1/Force direction: must not be zero"
+  ${plane_scene} --set "Contact/Obstacle 1/Force file=plane_force.csv"
+  --set "Contact/Obstacle 1/Force direction=0, 0, 0")
 coshell_bad_input_test(contact_force_file_is_a_path
-  "Contact/Obstacle 1/Force file: 'forces/plane.csv' is a path"
+  "Contact/Obstacle 1/Force file: 'forces/plane.csv' is not a plain file name NAME.csv"
   ${plane_scene} --set "Contact/Obstacle 1/Force file=forces/plane.csv"
   --set "Contact/Obstacle 1/Force direction=0, 0, 1")
 coshell_bad_input_test(contact_force_file_is_the_runs_own
@@ -416,6 +430,7 @@ add_test(NAME restart.funnel_friction
           --set "Contact/Obstacle 1/Friction coefficient=0.1"
           --set "Contact/Obstacle 2/Force file=plunger_force.csv"
           --set "Contact/Obstacle 2/Force direction=1, 0, 0"
+          --force-file plunger_force.csv
           --end 0.4 --interval 0.1 --tolerance 1e-12)
 set_tests_properties(restart.funnel_friction PROPERTIES LABELS contact)
 

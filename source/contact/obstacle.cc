@@ -1,9 +1,11 @@
 #include <coshell/contact/obstacle.h>
+#include <coshell/io/csv_file.h>
 #include <coshell/mesh/mesh.h>
 
 #include <deal.II/base/utilities.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -222,8 +224,39 @@ namespace coshell::contact
       return area;
     }
 
-    /// Force file and Force direction. The file is a plain name: the run
-    /// writes it beside its own CSV files, whose names it may not take.
+    /// Throws unless 'file' is a plain NAME.csv (letters, digits, '_', '-'
+    /// and '.', not starting with '.') that the run does not write itself:
+    /// it is written beside the run's own files, and a clash found only
+    /// when the run renames its files would lose one of them.
+    void check_force_file_name(const std::string &file,
+                               const std::string &where)
+    {
+      const std::string quoted = where + "/Force file: '" + file + "'";
+      const bool        plain =
+          std::all_of(file.begin(), file.end(),
+                      [](char c)
+                      {
+                        return std::isalnum(static_cast<unsigned char>(c)) ||
+                               c == '_' || c == '-' || c == '.';
+                      });
+      const auto ends_with = [&file](const std::string &end)
+      {
+        return file.size() > end.size() &&
+               file.compare(file.size() - end.size(), end.size(), end) == 0;
+      };
+      if (!plain || file[0] == '.' || !ends_with(".csv"))
+        throw std::invalid_argument(
+            quoted + " is not a plain file name NAME.csv (letters, digits, "
+                     "'_', '-', '.'; no path): it is written to the output "
+                     "directory");
+      const auto &taken = io::run_csv_files();
+      if (std::find(taken.begin(), taken.end(), file) != taken.end() ||
+          ends_with(".vertices.csv"))
+        throw std::invalid_argument(quoted + " is a file the run writes "
+                                             "itself; choose another name");
+    }
+
+    /// Force file and Force direction.
     void parse_force_file(ParameterHandler  &prm,
                           const std::string &where,
                           Obstacle          &obstacle)
@@ -231,16 +264,13 @@ namespace coshell::contact
       obstacle.force_file         = Utilities::trim(prm.get("Force file"));
       const std::string direction = Utilities::trim(prm.get("Force direction"));
       if (obstacle.force_file.empty())
+      {
+        if (!direction.empty())
+          throw std::invalid_argument(where + "/Force direction: given "
+                                              "without a Force file");
         return;
-      const std::string file = where + "/Force file: '" + obstacle.force_file;
-      if (obstacle.force_file.find('/') != std::string::npos)
-        throw std::invalid_argument(file + "' is a path; give a file name, "
-                                           "written to the output directory");
-      for (const char *taken : {"time_history.csv", "contact_forces.csv",
-                                "newton_history.csv", "load_displacement.csv"})
-        if (obstacle.force_file == taken)
-          throw std::invalid_argument(file + "' is a file the run writes "
-                                             "itself; choose another name");
+      }
+      check_force_file_name(obstacle.force_file, where);
       if (direction.empty())
         throw std::invalid_argument(where + "/Force direction: required with "
                                             "a Force file ('a, b, c')");
@@ -306,7 +336,8 @@ namespace coshell::contact
       model::RigidMotion::declare_entries(prm);
       prm.declare_entry(
           "Input direction", "", Patterns::Anything(),
-          "'a, b, c' (dimensionless): with --interactive, a protocol line "
+          "'a, b, c' (dimensionless; numbers or expressions of the "
+          "Constants): with --interactive, a protocol line "
           "'t s' moves this obstacle by s times this vector (s in length "
           "units) at time t (s), linearly from the present, on top of its "
           "Translation and Rotation: a haptic device drives it. Empty: the "
@@ -320,11 +351,14 @@ namespace coshell::contact
           "'force_n' (force units, N in mm-N-s-tonne scenes: the contact "
           "and friction force the obstacle exerts on the shell along Force "
           "direction; positive where it pushes). Characters of the Name "
-          "other than letters and digits become '_'. Empty: none.");
+          "other than letters and digits become '_'. A plain NAME.csv, "
+          "not one of the run's own files. A restart appends to the "
+          "earlier run's file: keep its Force direction. Empty: none.");
       prm.declare_entry("Force direction", "", Patterns::Anything(),
-                        "'a, b, c' (dimensionless, normalized): the "
+                        "'a, b, c' (dimensionless, normalized; each a "
+                        "number or an expression of the Constants): the "
                         "direction Force file measures along; required "
-                        "with it.");
+                        "with it, refused without it.");
       prm.declare_entry("Friction coefficient", "0", Patterns::Double(),
                         "Coulomb friction coefficient mu against the shell "
                         "(dimensionless, >= 0).");
@@ -336,26 +370,12 @@ namespace coshell::contact
     }
   }
 
-  namespace
-  {
-    void check_force_files_distinct(const std::vector<Obstacle> &obstacles)
-    {
-      for (unsigned int a = 0; a < obstacles.size(); ++a)
-        for (unsigned int b = a + 1; b < obstacles.size(); ++b)
-          if (!obstacles[a].force_file.empty() &&
-              obstacles[a].force_file == obstacles[b].force_file)
-            throw std::invalid_argument(
-                "Contact: obstacles '" + obstacles[a].name + "' and '" +
-                obstacles[b].name + "' have the same Force file '" +
-                obstacles[a].force_file + "'");
-    }
-  } // namespace
-
   std::vector<Obstacle>
   ObstacleParameters::parse_parameters(ParameterHandler  &prm,
                                        const std::string &prm_directory)
   {
-    std::vector<Obstacle> obstacles;
+    std::vector<Obstacle>              obstacles;
+    std::map<std::string, std::string> force_file_owners;
     for (unsigned int k = 1; k <= max_obstacles; ++k)
     {
       prm.enter_subsection(obstacle_section(k));
@@ -378,8 +398,17 @@ namespace coshell::contact
                                      : where + " ('" + name + "'): " + message);
       }
       prm.leave_subsection();
+      // Two obstacles writing one file would interleave their rows.
+      if (!file.empty() && !obstacles.back().force_file.empty())
+      {
+        const auto [owner, added] =
+            force_file_owners.emplace(obstacles.back().force_file, where);
+        if (!added)
+          throw std::invalid_argument(where + "/Force file: '" + owner->first +
+                                      "' is " + owner->second +
+                                      "'s Force file too");
+      }
     }
-    check_force_files_distinct(obstacles);
     return obstacles;
   }
 } // namespace coshell::contact

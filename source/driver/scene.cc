@@ -18,6 +18,7 @@
 #include <coshell/solvers/parallel_environment.h>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <filesystem>

@@ -9,10 +9,12 @@
 
 #include "staged_output.h"
 
+#include <algorithm>
 #include <cmath>
 #include <csignal>
 #include <filesystem>
 #include <iomanip>
+#include <optional>
 #include <sstream>
 #include <type_traits>
 
@@ -40,6 +42,21 @@ namespace coshell::driver
       for (auto &[o, file] : out.obstacle_force_files)
         files.push_back(&file);
       return files;
+    }
+
+    /// The rows the earlier run had written to file k of
+    /// staged_csv_files() at the checkpoint; none known for a Force file
+    /// when that run wrote none. Every Force file gets one row per step,
+    /// as contact_forces.csv does, so any of the earlier run's gives their
+    /// count, and a Force file added or moved between the runs is found
+    /// by its name.
+    std::optional<unsigned int> earlier_rows(const io::Checkpoint &checkpoint,
+                                             unsigned int          k)
+    {
+      const unsigned int index = std::min<unsigned int>(k, csv_files.size());
+      if (index < checkpoint.csv_rows.size())
+        return checkpoint.csv_rows[index];
+      return std::nullopt;
     }
 
     std::string checkpoint_name(unsigned int step)
@@ -103,10 +120,9 @@ namespace coshell::driver
     if (!restart_)
       return texts;
     const std::string directory = earlier_directory(restart_file_);
-    for (unsigned int k = 0; k < files.size() && k < restart_->csv_rows.size();
-         ++k)
-      texts[k] = io::read_earlier_rows(directory + "/" + files[k],
-                                       restart_->csv_rows[k]);
+    for (unsigned int k = 0; k < files.size(); ++k)
+      if (const auto rows = earlier_rows(*restart_, k))
+        texts[k] = io::read_earlier_rows(directory + "/" + files[k], *rows);
     return texts;
   }
 
@@ -141,7 +157,7 @@ namespace coshell::driver
     for (unsigned int k = 0; k < earlier.size() && k < files.size(); ++k)
       if (files[k] && !earlier[k].empty())
         carried = files[k]->resume(earlier[k]) && carried;
-      else if (files[k] && k < c.csv_rows.size() && c.csv_rows[k] > 0)
+      else if (files[k] && earlier_rows(c, k).value_or(1) > 0)
         carried = false;
     const std::string pvd = earlier_directory(restart_file_) + "/solution.pvd";
     if (c.pvd_entries > 0 &&

@@ -27,7 +27,9 @@ namespace coshell::driver
 
     io::CsvFile                curve, history;
     std::optional<io::CsvFile> time_history, contact_forces;
-    /// Contact/Obstacle k/Force file: obstacle k - 1 and its file.
+    /// Each Contact/Obstacle k/Force file: the obstacle's index in
+    /// Contact::obstacles() (the subsections with a mesh, in order) and
+    /// its file.
     std::vector<std::pair<unsigned int, io::CsvFile>> obstacle_force_files;
     /// The contact of the run (nullptr when Contact is off), and the
     /// extremes of its gap over every iterate of the run.

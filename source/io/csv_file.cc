@@ -51,6 +51,15 @@ namespace coshell::io
     return true;
   }
 
+  const std::vector<std::string> &run_csv_files()
+  {
+    static const std::vector<std::string> files = {
+        "load_displacement.csv", "newton_history.csv",   "time_history.csv",
+        "contact_forces.csv",    "reference_points.csv", "modes.csv",
+        "convergence.csv"};
+    return files;
+  }
+
   std::string read_earlier_rows(const std::string &path, unsigned int rows)
   {
     std::ifstream in(path);

@@ -28,7 +28,8 @@ namespace coshell::model
                       "separated by ';', in length units.");
     prm.declare_entry("Rotation axis", "0, 0, 1", Patterns::Anything(),
                       "Axis of the rigid rotation (dimensionless, "
-                      "normalized here).");
+                      "normalized here; each component a number or an "
+                      "expression of the scene's Constants).");
     prm.declare_entry("Rotation angle", "0", Patterns::Anything(),
                       "angle(t): muparser expression of t (s), in rad "
                       "(pi is defined).");

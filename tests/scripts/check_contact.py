@@ -44,7 +44,8 @@ import math
 import os
 import sys
 
-from scene_runner import add_scene_arguments, energy_balance, run_scene
+from scene_runner import (add_scene_arguments, energy_balance,
+                          force_file_check, run_scene)
 
 
 def read_rows(path):
@@ -129,6 +130,10 @@ def main():
     parser.add_argument("--edge-clearance", nargs=2, type=float)
     parser.add_argument("--energy-balance", type=float)
     parser.add_argument("--report")
+    parser.add_argument("--force-file", nargs=6, action="append", default=[],
+                        metavar=("NAME", "OBSTACLE", "DX", "DY", "DZ",
+                                 "COLUMN"),
+                        help="a Force file against contact_forces.csv")
     args = parser.parse_args()
 
     run_scene(args.coshell, args.prm, args.output, args.set)
@@ -142,6 +147,11 @@ def main():
         passed += ok
         failures += not ok
 
+    for name, obstacle, dx, dy, dz, column in args.force_file:
+        ok, sentence = force_file_check(
+            args.output, name, int(obstacle),
+            (float(dx), float(dy), float(dz)), column)
+        check(ok, sentence)
     for component, value, rtol in args.reaction:
         total = sum(float(r[component]) for r in last)
         error = abs(total - float(value)) / abs(float(value))

@@ -26,8 +26,10 @@ energy and the optic's width at the end (<= WIDTH) are checked and the
 folded lens is drawn.
 
 Checks coshell's plunger_force.csv (time, plunger_displacement, force_n)
-against contact_forces.csv and, with --figures, writes the PNGs: the plunger force, strains and smallest gap against
-time, the folded lens (the paper's Fig. 4) and the deployment sequence.
+against contact_forces.csv and, with --figures, writes the PNGs: the
+plunger force against its travel, the plunger force, strains and
+smallest gap against time, the folded lens (the paper's Fig. 4) and the
+deployment sequence.
 Reports the optic's decentration and tilt in the bag and the real-time
 factor.
 """
@@ -41,7 +43,7 @@ import sys
 import numpy as np
 
 from scene_runner import (add_scene_arguments, energy_balance, exit_with,
-                          read_rows, run_contact_scene)
+                          force_file_check, run_contact_scene)
 
 SCRIPTS = os.path.dirname(os.path.abspath(__file__))
 RENDER = os.path.join(SCRIPTS, "..", "..", "doc", "scripts", "render_vtu.py")
@@ -98,28 +100,6 @@ def plunger_rows(forces, plunger):
     return rows, time, column(rows, "ux"), push, column(rows, "work")
 
 
-def check_plunger_csv(checks, output, time, displacement, push):
-    """coshell's plunger_force.csv (Contact/Obstacle 2/Force file) against
-    the plunger's rows of contact_forces.csv: its header is the issue's,
-    and its rows are their time, x displacement and -fx (both files print
-    12 digits)."""
-    path = os.path.join(output, "plunger_force.csv")
-    with open(path) as f:
-        header = f.readline().strip()
-    rows = read_rows(path)
-    expected = np.column_stack([time, displacement, push])
-    written = np.array([[float(r[k]) for k in
-                         ("time", "plunger_displacement", "force_n")]
-                        for r in rows]) if rows else np.zeros((0, 3))
-    same = written.shape == expected.shape and np.allclose(
-        written, expected, rtol=1e-11, atol=1e-15)
-    print(f"plunger_force.csv: {len(rows)} rows, header '{header}'")
-    checks("coshell's plunger_force.csv has the header time,"
-           "plunger_displacement,force_n and the plunger's rows of "
-           "contact_forces.csv",
-           header == "time,plunger_displacement,force_n" and same)
-
-
 def travel_measures(displacement, push, work, window=0.5):
     """The forward push's largest force averaged over 'window' mm of
     travel (N; nan for a shorter push) and its work (N mm): the code's own
@@ -146,7 +126,11 @@ def travel_measures(displacement, push, work, window=0.5):
 def check_plunger_force(checks, forces, args, output):
     _, time, displacement, push, work_so_far = plunger_rows(
         forces, args.plunger)
-    check_plunger_csv(checks, output, time, displacement, push)
+    ok, sentence = force_file_check(output, "plunger_force.csv", args.plunger,
+                                    (1, 0, 0), "plunger_displacement")
+    print(sentence)
+    checks("coshell's plunger_force.csv (time,plunger_displacement,force_n) "
+           "has the plunger's rows of contact_forces.csv", ok)
     largest = push.max() if len(push) else math.nan
     print(f"plunger: largest force {1e3 * largest:.4g} mN, travel "
           f"{displacement.max():.4g} mm")

@@ -11,7 +11,7 @@ check_restart.py --coshell BIN --prm FILE --output DIR [--set A/B=v ...]
 2. Run B from A's middle checkpoint: B's final checkpoint equals A's to TOL
    (relative, every dataset), and B's time_history.csv has A's rows (the
    earlier ones copied, the later ones recomputed; 12 printed digits), as
-   have its contact_forces.csv and plunger_force.csv where A wrote them.
+   have its contact_forces.csv where A wrote it and each --force-file.
 3. Run C to T and stop it with SIGINT half-way: exit status 3, a checkpoint
    named in its message, no summary.json and no finished time_history.csv.
    Run D from that checkpoint into C's directory: D's final checkpoint equals
@@ -118,10 +118,16 @@ def rows(directory, name):
         return list(csv.reader(f))
 
 
-def compare_histories(a, b, what):
-    for name in ("time_history.csv", "contact_forces.csv",
-                 "plunger_force.csv"):
-        if not os.path.exists(os.path.join(a, name)):
+def compare_histories(a, b, what, force_files):
+    """B's (or D's, F's) rows of the time history, the contact forces
+    where A wrote them, and the Force files the scene sets, which A and B
+    must both have written."""
+    for name in ["time_history.csv", "contact_forces.csv"] + force_files:
+        exist = [os.path.exists(os.path.join(d, name)) for d in (a, b)]
+        if name not in force_files and not exist[0]:
+            continue
+        if not all(exist):
+            check(False, f"{what}: {name} written by A and by {what}")
             continue
         ra, rb = rows(a, name), rows(b, name)
         worst = 0.0
@@ -177,7 +183,7 @@ def resume_and_compare(args, reference, directory, checkpoint, final, timing,
     compare_checkpoints(os.path.join(reference, final),
                         os.path.join(directory, final), args.tolerance,
                         f"{name} restarted from {os.path.basename(checkpoint)}")
-    compare_histories(reference, directory, name)
+    compare_histories(reference, directory, name, args.force_file)
 
 
 def check_interactive(args, reference, final, timing):
@@ -240,6 +246,9 @@ def main():
     parser.add_argument("--tolerance", type=float, default=1e-12)
     parser.add_argument("--interactive-targets", type=float, nargs="*",
                         default=[])
+    parser.add_argument("--force-file", action="append", default=[],
+                        help="a Contact/Obstacle k/Force file the scene "
+                        "sets: compared like the histories")
     args = parser.parse_args()
     shutil.rmtree(args.output, ignore_errors=True)
     a, b, c = (os.path.join(args.output, x) for x in ("A", "B", "C"))
@@ -279,7 +288,7 @@ def check_last_checkpoint(args, reference, checkpoint, timing):
     """Run F from the last checkpoint: A's rows and A's quantities."""
     directory = os.path.join(args.output, "F")
     restart(args, directory, checkpoint, timing, "F")
-    compare_histories(reference, directory, "F")
+    compare_histories(reference, directory, "F", args.force_file)
     quantities = []
     for run_directory in (reference, directory):
         with open(os.path.join(run_directory, "summary.json")) as f:

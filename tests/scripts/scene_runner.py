@@ -69,10 +69,44 @@ def run_contact_scene(args, pairs):
     forces = read_rows(os.path.join(args.output, "contact_forces.csv"))
     history = read_rows(os.path.join(args.output, "time_history.csv"))
     gaps = [float(r["min_distance"]) for r in forces]
-    gap = min([g for g in gaps if math.isfinite(g)], default=math.inf)
-    print(f"smallest gap over every pair and step: {gap:.4g} mm")
-    checks(f"every pair's gap stays >= 0 ({pairs})", gap >= 0)
+    finite = [g for g in gaps if math.isfinite(g)]
+    gap = min(finite, default=math.nan)
+    print(f"smallest gap over every pair and step: {gap:.4g} mm "
+          f"({len(finite)} rows with a pair in reach)")
+    checks(f"every pair's gap stays >= 0 ({pairs})", bool(finite) and gap >= 0)
     return checks, forces, history
+
+
+def force_file_check(output, name, obstacle, direction, column):
+    """Contact/Obstacle k/Force file 'name' against the obstacle's rows of
+    contact_forces.csv (both written by one run, 12 digits): its header
+    is 'time,<column>,force_n' and each row is the time, the obstacle's
+    displacement (ux, uy, uz) along the unit 'direction' and minus its
+    force (fx, fy, fz) along it. A consistency check of two outputs.
+    Returns (ok, a sentence)."""
+    with open(os.path.join(output, name)) as f:
+        header = f.readline().strip()
+    written = read_rows(os.path.join(output, name))
+    forces = [r for r in read_rows(os.path.join(output, "contact_forces.csv"))
+              if int(float(r["obstacle"])) == obstacle]
+    norm = math.sqrt(sum(d * d for d in direction))
+    unit = [d / norm for d in direction]
+    worst = 0.0
+    for row, force in zip(written, forces):
+        u = [float(force[c]) for c in ("ux", "uy", "uz")]
+        f = [float(force[c]) for c in ("fx", "fy", "fz")]
+        expected = (float(force["time"]), sum(a * b for a, b in zip(u, unit)),
+                    -sum(a * b for a, b in zip(f, unit)))
+        scales = (1.0, max(map(abs, u)), max(map(abs, f)))
+        for value, want, scale in zip(
+                (float(row[k]) for k in ("time", column, "force_n")),
+                expected, scales):
+            worst = max(worst, abs(value - want) / max(scale, 1e-300))
+    ok = (header == f"time,{column},force_n" and len(written) == len(forces)
+          and len(forces) > 0 and worst < 1e-10)
+    return ok, (f"{name}: header '{header}', {len(written)} rows, the "
+                f"obstacle {obstacle}'s rows of contact_forces.csv along "
+                f"{unit} to {worst:.1e} of their components (1e-10)")
 
 
 def energy_balance(history, forces):

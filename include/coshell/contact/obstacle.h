@@ -57,7 +57,7 @@ namespace coshell::contact
   };
 
   /// prm subsections "Contact/Obstacle 1" ... "Obstacle 12" (the tuck
-  /// takes 8 tools, the injection 6).
+  /// takes 8 tools, the probe of its hand-off 9: doc/validation.md).
   struct ObstacleParameters
   {
     static constexpr unsigned int max_obstacles = 12;

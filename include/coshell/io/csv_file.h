@@ -39,6 +39,11 @@ namespace coshell::io
   /// overwrites it; "" when it is missing or shorter.
   std::string read_earlier_rows(const std::string &path, unsigned int rows);
 
+  /// The CSV files a run writes itself in its output directory (besides
+  /// a field's NAME.vertices.csv): an obstacle's Force file may not take
+  /// their names.
+  const std::vector<std::string> &run_csv_files();
+
   /// "a,b,c" for the names.
   std::string join(const std::vector<std::string> &names);
 } // namespace coshell::io
