@@ -104,6 +104,15 @@ coshell_contact_test(contact.incline_friction.frictionless ${incline}
 coshell_contact_test(contact.incline_friction.sticking ${incline}
   ARGS --set "Loads/Gravity=1703.489, 0, -9660.965"
   --change centre_ux 0.015 0.04 1e-4 --gap-nonnegative)
+# A tool that grips and lets go: Friction coefficient = if(t < 0.025,
+# 0.5, 0.2) at theta = 20 deg sticks (tan theta < 0.5; creeps less than
+# 1e-4 mm from 0.012 to 0.025 s, measured 6.4e-6) and then slides at
+# g (sin theta - 0.2 cos theta) = 1511.54 mm/s^2 within 2 % (measured
+# 1508.5, fitted over [0.028, 0.04] s).
+coshell_contact_test(contact.incline_friction.grip_then_release ${incline}
+  ARGS --set "Contact/Obstacle 1/Friction coefficient=if(t < 0.025, 0.5, 0.2)"
+  --change centre_ux 0.012 0.025 1e-4
+  --slope centre_ux 0.028 0.04 1511.54 0.02 --gap-nonnegative)
 # A floor on friction's smoothing length (Stiction displacement, here
 # 1000 and 100 times IPC's v dt = 1e-6 mm): sliding keeps Coulomb's law
 # (the slip per step, about 0.05 mm, is far above the floor); sticking
@@ -271,6 +280,7 @@ coshell_contact_test(contact.hard.knife_edge_edge_friction ${knife}
 
 # Bad input names the obstacle and what is wrong with it.
 set(plane_scene ${COSHELL_PRM}/contact/plate_on_plane.prm)
+set(incline_scene ${COSHELL_PRM}/contact/incline_friction.prm)
 coshell_bad_input_test(contact_missing_obstacle_mesh
   "Contact/Obstacle 1 .'plane'.: mesh file .*no_such_obstacle.stl' does not exist"
   ${plane_scene} --set "Contact/Obstacle 1/Mesh file=no_such_obstacle.stl")
@@ -320,6 +330,9 @@ coshell_bad_input_test(contact_friction_too_stiff_to_solve
 coshell_bad_input_test(contact_negative_friction
   "Contact/Obstacle 1 .'plane'.: Friction coefficient: -0.1 is negative"
   ${plane_scene} --set "Contact/Obstacle 1/Friction coefficient=-0.1")
+coshell_bad_input_test(contact_friction_negative_later
+  "obstacle .incline.: Friction coefficient is -0.02 at t = 0.026 s"
+  ${incline_scene} --set "Contact/Obstacle 1/Friction coefficient=0.5 - 20 * t")
 coshell_bad_input_test(contact_load_scaled_barrier_without_load
   "Barrier stiffness scale = load needs a dead load"
   ${plane_scene} --set "Loads/Gravity=0, 0, 0"

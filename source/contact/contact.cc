@@ -73,6 +73,9 @@ namespace coshell::contact
     current_.resize(n);
     target_.resize(n);
     obstacle_trees_.resize(n);
+    obstacle_friction_.resize(n);
+    for (unsigned int o = 0; o < n; ++o)
+      obstacle_friction_[o] = parameters_.obstacles[o].friction_coefficient;
     loads_.resize(n);
     obstacle_work_.assign(n, 0.0);
     potential_per_obstacle_.assign(n, 0.0);
@@ -341,7 +344,8 @@ namespace coshell::contact
     target_time_ = time;
     for (unsigned int o = 0; o < current_.size(); ++o)
     {
-      target_[o] = parameters_.obstacles[o].positions(time);
+      obstacle_friction_[o] = parameters_.obstacles[o].friction_at(time);
+      target_[o]            = parameters_.obstacles[o].positions(time);
       if (current_[o].empty()) // first use: no sweep from nowhere
       {
         current_[o] = target_[o];

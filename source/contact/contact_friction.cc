@@ -87,9 +87,8 @@ namespace coshell::contact
 
   double Contact::friction_coefficient(const Pair &pair) const
   {
-    return pair.self
-               ? parameters_.self_friction_coefficient
-               : parameters_.obstacles[pair.obstacle].friction_coefficient;
+    return pair.self ? parameters_.self_friction_coefficient
+                     : obstacle_friction_[pair.obstacle];
   }
 
   double Contact::smoothing_length() const

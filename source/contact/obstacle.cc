@@ -1,5 +1,6 @@
 #include <coshell/contact/obstacle.h>
 #include <coshell/io/csv_file.h>
+#include <coshell/io/expressions.h>
 #include <coshell/mesh/mesh.h>
 
 #include <deal.II/base/utilities.h>
@@ -45,6 +46,21 @@ namespace coshell::contact
     const auto &[t0, s0] = *(after - 1);
     const auto &[t1, s1] = *after;
     return s0 + (s1 - s0) * (time - t0) / (t1 - t0);
+  }
+
+  double Obstacle::friction_at(double time) const
+  {
+    if (!friction_of_time)
+      return friction_coefficient;
+    friction_of_time->set_time(time);
+    const double mu = friction_of_time->value(Point<1>());
+    // An expression that reaches 0 may round to -1e-17 there.
+    if (mu > -1e-12)
+      return std::max(mu, 0.0);
+    std::ostringstream message;
+    message << "obstacle '" << name << "': Friction coefficient is " << mu
+            << " at t = " << time << " s; it must be >= 0";
+    throw std::runtime_error(message.str());
   }
 
   std::vector<Point<3>> Obstacle::positions(double time) const
@@ -282,6 +298,28 @@ namespace coshell::contact
       obstacle.force_direction /= obstacle.force_direction.norm();
     }
 
+    /// A number, or an expression of t (s) whose value at t = 0 is the
+    /// constant friction_coefficient.
+    void parse_friction(ParameterHandler  &prm,
+                        const std::string &where,
+                        Obstacle          &obstacle)
+    {
+      const std::string text = Utilities::trim(prm.get("Friction coefficient"));
+      try
+      {
+        obstacle.friction_coefficient = Utilities::string_to_double(text);
+      }
+      catch (...)
+      {
+        obstacle.friction_of_time = io::parse_expressions<1>(
+            text, 1, "x,t", true, "t", where + "/Friction coefficient");
+        obstacle.friction_coefficient = obstacle.friction_at(0);
+      }
+      if (!(obstacle.friction_coefficient >= 0))
+        throw std::runtime_error("Friction coefficient: " + text +
+                                 " is negative; it must be >= 0");
+    }
+
     Obstacle parse_obstacle(ParameterHandler  &prm,
                             const std::string &file,
                             const std::string &where)
@@ -303,12 +341,8 @@ namespace coshell::contact
                                       "/Input direction: must not be zero");
       }
       parse_force_file(prm, where, obstacle);
-      obstacle.friction_coefficient = prm.get_double("Friction coefficient");
-      obstacle.offset               = prm.get_double("Offset");
-      if (!(obstacle.friction_coefficient >= 0))
-        throw std::runtime_error(
-            "Friction coefficient: " + prm.get("Friction coefficient") +
-            " is negative; it must be >= 0");
+      parse_friction(prm, where, obstacle);
+      obstacle.offset = prm.get_double("Offset");
       if (!(obstacle.offset >= 0))
         throw std::runtime_error("Offset: " + prm.get("Offset") +
                                  " is negative; it must be >= 0");
@@ -359,9 +393,12 @@ namespace coshell::contact
                         "number or an expression of the Constants): the "
                         "direction Force file measures along; required "
                         "with it, refused without it.");
-      prm.declare_entry("Friction coefficient", "0", Patterns::Double(),
+      prm.declare_entry("Friction coefficient", "0", Patterns::Anything(),
                         "Coulomb friction coefficient mu against the shell "
-                        "(dimensionless, >= 0).");
+                        "(dimensionless, >= 0): a number, or an expression "
+                        "of t (s) and the Constants, e.g. '0.5 * (t < 1.3)' "
+                        "for forceps that let go at 1.3 s (taken at each "
+                        "step's end time).");
       prm.declare_entry("Offset", "0", Patterns::Double(),
                         "Distance kept between the obstacle and the shell's "
                         "surface, added to half the shell thickness (length "

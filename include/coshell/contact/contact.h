@@ -320,9 +320,11 @@ namespace coshell::contact
     std::vector<std::vector<std::array<unsigned, 2>>> obstacle_edges_;
     std::vector<std::vector<std::array<unsigned, 3>>> obstacle_triangle_edges_;
     double                                            target_time_ = -1e300;
-    std::vector<std::vector<dealii::Point<3>>>        current_, saved_, target_;
-    std::vector<Tree>                                 obstacle_trees_;
-    std::vector<Pair>                                 pairs_;
+    /// Each obstacle's friction coefficient at target_time_.
+    std::vector<double>                        obstacle_friction_;
+    std::vector<std::vector<dealii::Point<3>>> current_, saved_, target_;
+    std::vector<Tree>                          obstacle_trees_;
+    std::vector<Pair>                          pairs_;
     std::vector<dealii::Point<3>> positions_;       ///< shell, at prepare()
     std::vector<dealii::Point<3>> saved_positions_; ///< at save()
     double                        saved_time_ = 0;

@@ -39,7 +39,11 @@ namespace coshell::contact
     std::vector<std::array<unsigned, 3>> triangles;
     model::RigidMotion                   motion;
     double                               friction_coefficient = 0;
-    double                               offset               = 0; ///< length
+    /// Friction coefficient as an expression of t (null: the constant
+    /// friction_coefficient, its value at t = 0 otherwise): a tool that
+    /// grips and then lets go.
+    std::shared_ptr<dealii::FunctionParser<1>> friction_of_time;
+    double                                     offset = 0; ///< length
     /// Area of the triangles around each vertex, a third of each (length^2).
     std::vector<double> vertex_area;
     /// Contact/Obstacle k/Input direction: on top of 'motion' the obstacle
@@ -52,6 +56,9 @@ namespace coshell::contact
     std::string          force_file;
     dealii::Tensor<1, 3> force_direction;
 
+    /// mu at time t; throws std::runtime_error naming the obstacle where
+    /// it is negative.
+    double friction_at(double time) const;
     /// Vertex positions at time t.
     std::vector<dealii::Point<3>> positions(double time) const;
   };
