@@ -16,6 +16,8 @@ DefineConstant[
   y_high = 4.3,        // mm, how far it reaches to +y
   blade_z = -0.275,    // mm
   side = -1,           // -1: the paddle of the haptic at -x, 1: at +x
+  turn = 0,            // degrees: the whole blade turned about the z axis,
+                       // for a lens turned so (prm Mesh/Vertex transformation)
   mesh_size = 0.5      // mm at level 0
 ];
 If (!(blade_length > 0 && y_low + y_high > 0 && (side == 1 || side == -1)))
@@ -36,4 +38,7 @@ Line(3) = {3, 4};
 Line(4) = {4, 1};
 Curve Loop(1) = {1, 2, 3, 4};
 Plane Surface(1) = {1};
+If (turn != 0)
+  Rotate {{0, 0, 1}, {0, 0, 0}, turn * Pi / 180} { Surface{1}; }
+EndIf
 Physical Surface("paddle", 1) = {1};
