@@ -64,7 +64,8 @@ namespace coshell::contact
   };
 
   /// prm subsections "Contact/Obstacle 1" ... "Obstacle 12" (the tuck
-  /// takes 8 tools, the probe of its hand-off 9: doc/validation.md).
+  /// takes 8 tools, the probes of its hand-off up to 12:
+  /// doc/validation.md).
   struct ObstacleParameters
   {
     static constexpr unsigned int max_obstacles = 12;
