@@ -127,6 +127,22 @@ add_test(NAME vtu_output_fields
           --output ${CMAKE_CURRENT_BINARY_DIR}/output/vtu_output_fields)
 set_tests_properties(vtu_output_fields PROPERTIES LABELS system)
 
+# The VTU's strain fields on a state of uniform strain, where the elements
+# are exact: the linear cantilever (nu = 0, EI = 100, b = 1, h = 0.1) under
+# its end moment M = 1 and an axial tip force P = 24 spread 1/4, 1/2, 1/4.
+# Every cell: membrane strain P / (E b h) = 2e-4, bending strain
+# 6 M / (E b h^2) = 5e-4 and, on the stretched face, their sum 7e-4. The
+# tolerance is float32's, in which deal.II writes VTU data.
+add_test(NAME vtu_output_strains.uniform
+  COMMAND ${COSHELL_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_vtu.py
+          --coshell $<TARGET_FILE:coshell>
+          --prm ${COSHELL_PRM}/plates/cantilever_end_moment_linear.prm
+          --output ${CMAKE_CURRENT_BINARY_DIR}/output/vtu_output_strains.uniform
+          --level 0
+          --set "Loads/Point forces=12 0 0 : 6 0 0$<SEMICOLON> 12 0.5 0 : 12 0 0$<SEMICOLON> 12 1 0 : 6 0 0"
+          --uniform-strains 2e-4 5e-4 7e-4 1e-6)
+set_tests_properties(vtu_output_strains.uniform PROPERTIES LABELS system)
+
 # Every linear solver gives the same answer on the clamped plate.
 foreach(method cholmod umfpack amesos-klu amesos-mumps cg-amg)
   coshell_scene_test(linear_solver.${method}

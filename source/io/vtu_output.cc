@@ -1,5 +1,6 @@
 #include <coshell/io/json.h>
 #include <coshell/io/vtu_output.h>
+#include <coshell/model/internal_force.h>
 #include <coshell/solvers/parallel_environment.h>
 
 #include <deal.II/fe/fe_simplex_p.h>
@@ -8,6 +9,7 @@
 #include <deal.II/numerics/data_out.h>
 
 #include <algorithm>
+#include <array>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -72,7 +74,7 @@ namespace coshell::io
     void add_tensor_fields(DataOut<2, 3>                   &data_out,
                            const std::vector<Tensor<2, 3>> &tensors,
                            const std::string               &symbol,
-                           std::vector<Vector<double>>     &storage)
+                           std::deque<Vector<double>>      &storage)
     {
       static const std::array<std::pair<unsigned int, unsigned int>, 6>
           entries = {{{0, 0}, {1, 1}, {2, 2}, {0, 1}, {1, 2}, {0, 2}}};
@@ -89,6 +91,39 @@ namespace coshell::io
         data_out.add_data_vector(storage[storage.size() - entries.size() + e],
                                  symbol + "_" + suffix[e],
                                  DataOut<2, 3>::type_cell_data);
+    }
+
+    /// Per cell: material id, thickness and the largest principal
+    /// membrane, bending and surface strains (model::cell_strains).
+    void
+    add_cell_scalars(DataOut<2, 3>                               &data_out,
+                     const model::ShellModel                     &model,
+                     const std::vector<element::ShellResultants> &resultants,
+                     std::deque<Vector<double>>                  &storage)
+    {
+      static const std::array<std::string, 5> names = {
+          {"material_id", "thickness", "membrane_strain", "bending_strain",
+           "surface_strain"}};
+      std::array<Vector<double>, 5> fields;
+      for (auto &field : fields)
+        field.reinit(model.surface().n_active_cells());
+      for (const auto &cell : model.dof_handler().active_cell_iterators())
+      {
+        const unsigned int c        = cell->active_cell_index();
+        const auto        &material = model.material(cell);
+        const auto strains = model::cell_strains(material, resultants[c]);
+        fields[0][c]       = cell->material_id();
+        fields[1][c]       = material.thickness;
+        fields[2][c]       = strains.membrane;
+        fields[3][c]       = strains.bending;
+        fields[4][c]       = strains.surface;
+      }
+      for (unsigned int f = 0; f < fields.size(); ++f)
+      {
+        storage.push_back(std::move(fields[f]));
+        data_out.add_data_vector(storage.back(), names[f],
+                                 DataOut<2, 3>::type_cell_data);
+      }
     }
   } // namespace
 
@@ -127,7 +162,7 @@ namespace coshell::io
                         const Vector<double>                        &solution,
                         const std::vector<element::ShellResultants> &resultants,
                         const std::vector<DofField>                 &fields,
-                        std::vector<Vector<double>> &storage) const
+                        std::deque<Vector<double>> &storage) const
   {
     std::vector<std::string> names(3, "displacement");
     names.insert(names.end(), 3, "rotation");
@@ -153,22 +188,9 @@ namespace coshell::io
       membrane.push_back(r.membrane_global);
       bending.push_back(r.bending_global);
     }
-    storage.reserve(14);
     add_tensor_fields(data_out, membrane, "N", storage);
     add_tensor_fields(data_out, bending, "M", storage);
-    Vector<double> material(model.surface().n_active_cells());
-    Vector<double> thickness(material.size());
-    for (const auto &cell : model.dof_handler().active_cell_iterators())
-    {
-      material[cell->active_cell_index()]  = cell->material_id();
-      thickness[cell->active_cell_index()] = model.material(cell).thickness;
-    }
-    storage.push_back(material);
-    data_out.add_data_vector(storage.back(), "material_id",
-                             DataOut<2, 3>::type_cell_data);
-    storage.push_back(thickness);
-    data_out.add_data_vector(storage.back(), "thickness",
-                             DataOut<2, 3>::type_cell_data);
+    add_cell_scalars(data_out, model, resultants, storage);
   }
 
   std::string
@@ -191,7 +213,7 @@ namespace coshell::io
                          output_directory + "/" + name + ".vertices.csv");
     DataOut<2, 3> data_out;
     data_out.attach_dof_handler(model.dof_handler());
-    std::vector<Vector<double>> storage;
+    std::deque<Vector<double>> storage;
     add_fields(data_out, model, solution, resultants, fields, storage);
     if (pvtu_)
     {

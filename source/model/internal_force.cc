@@ -1,5 +1,9 @@
 #include <coshell/model/internal_force.h>
 
+#include <algorithm>
+#include <array>
+#include <cmath>
+
 namespace coshell::model
 {
   using namespace dealii;
@@ -233,19 +237,50 @@ namespace coshell::model
 
   namespace
   {
-    /// Largest principal value in magnitude of the symmetric 2 x 2 tensor
-    /// (xx, yy, xy).
-    double largest_principal(double xx, double yy, double xy)
+    /// A symmetric 2 x 2 tensor (xx, yy, xy).
+    using PlaneTensor = std::array<double, 3>;
+
+    /// Largest principal value in magnitude.
+    double largest_principal(const PlaneTensor &s)
     {
-      const double centre = 0.5 * (xx + yy);
-      const double radius = std::hypot(0.5 * (xx - yy), xy);
+      const double centre = 0.5 * (s[0] + s[1]);
+      const double radius = std::hypot(0.5 * (s[0] - s[1]), s[2]);
       return std::abs(centre) + radius;
+    }
+
+    /// Plane stress inverted: the strain tensor (tensor shear component)
+    /// of a resultant r, eps = (r_xx - nu r_yy, r_yy - nu r_xx,
+    /// (1 + nu) r_xy) times 'compliance'.
+    PlaneTensor
+    plane_strain_of(const PlaneTensor &r, double nu, double compliance)
+    {
+      return {compliance * (r[0] - nu * r[1]), compliance * (r[1] - nu * r[0]),
+              compliance * (1 + nu) * r[2]};
     }
   } // namespace
 
-  /// Plane stress: eps = (N_xx - nu N_yy, N_yy - nu N_xx, (1 + nu) N_xy)
-  /// / (E h) (tensor shear component), and the curvature likewise from
-  /// M with 12 / (E h^3); the surface strain is h/2 times the curvature.
+  /// Membrane strain N / (E h); bending strain at the surfaces 6 M / (E h^2),
+  /// h/2 times the curvature 12 M / (E h^3).
+  CellStrains cell_strains(const element::ShellMaterial   &material,
+                           const element::ShellResultants &resultants)
+  {
+    const double nu = material.poisson_ratio, E = material.youngs_modulus,
+                 h = material.thickness;
+    const PlaneTensor middle =
+        plane_strain_of(resultants.membrane_local, nu, 1 / (E * h));
+    const PlaneTensor bending =
+        plane_strain_of(resultants.bending_local, nu, 6 / (E * h * h));
+    CellStrains strains;
+    strains.membrane = largest_principal(middle);
+    strains.bending  = largest_principal(bending);
+    for (const double side : {-1.0, 1.0})
+      strains.surface = std::max(
+          strains.surface, largest_principal({middle[0] + side * bending[0],
+                                              middle[1] + side * bending[1],
+                                              middle[2] + side * bending[2]}));
+    return strains;
+  }
+
   LargestStrains
   largest_strains(const ShellModel                            &model,
                   const std::vector<element::ShellResultants> &resultants)
@@ -253,21 +288,10 @@ namespace coshell::model
     LargestStrains largest;
     for (const auto &cell : model.dof_handler().active_cell_iterators())
     {
-      const auto  &m  = model.material(cell);
-      const auto  &r  = resultants[cell->active_cell_index()];
-      const double nu = m.poisson_ratio, h = m.thickness;
-      const auto  &n = r.membrane_local;
-      const auto  &b = r.bending_local;
-      const double membrane =
-          largest_principal(n[0] - nu * n[1], n[1] - nu * n[0],
-                            (1 + nu) * n[2]) /
-          (m.youngs_modulus * h);
-      const double bending =
-          largest_principal(b[0] - nu * b[1], b[1] - nu * b[0],
-                            (1 + nu) * b[2]) *
-          6 / (m.youngs_modulus * h * h);
-      largest.membrane = std::max(largest.membrane, membrane);
-      largest.bending  = std::max(largest.bending, bending);
+      const CellStrains strains = cell_strains(
+          model.material(cell), resultants[cell->active_cell_index()]);
+      largest.membrane = std::max(largest.membrane, strains.membrane);
+      largest.bending  = std::max(largest.bending, strains.bending);
     }
     return largest;
   }

@@ -1,9 +1,14 @@
 #!/usr/bin/python3
 """Runs one level of a scene and checks that the VTU/PVD output is complete:
 the PVD indexes an existing VTU whose cell count matches summary.json, and
-which carries displacement and rotation vectors and the membrane force and
-bending moment tensor components. deal.II writes every field as point data
-of disjoint per-cell patches, so cell fields are constant on each cell.""" 
+which carries displacement and rotation vectors, the membrane force and
+bending moment tensor components and the cells' strains. deal.II writes
+every field as point data of disjoint per-cell patches, so cell fields are
+constant on each cell.
+
+With --uniform-strains it also checks every cell's membrane, bending and
+surface strain against values the caller derives by hand (a state of
+uniform strain, where the elements are exact).""" 
 import argparse
 import json
 import os
@@ -11,8 +16,30 @@ import subprocess
 import sys
 import xml.etree.ElementTree as ET
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)),
+                                "..", "..", "doc", "scripts"))
+import render_vtu  # noqa: E402
+
 POINT_FIELDS = {"displacement": 3, "rotation": 3}
-CELL_FIELDS = [f"{s}_{c}" for s in "NM" for c in ("xx", "yy", "zz", "xy", "yz", "xz")]
+STRAINS = ["membrane_strain", "bending_strain", "surface_strain"]
+CELL_FIELDS = [f"{s}_{c}" for s in "NM" for c in ("xx", "yy", "zz", "xy", "yz", "xz")] \
+    + ["material_id", "thickness"] + STRAINS
+
+
+def uniform_strain_problems(path, expected, tolerance):
+    """Each strain field against its expected value in every cell, to a
+    relative tolerance."""
+    mesh = render_vtu.read_vtu(path)
+    problems = []
+    for name, value in zip(STRAINS, expected):
+        cells = render_vtu.cell_means(mesh, mesh.point_data[name])
+        worst = max(abs(c - value) for c in cells) / abs(value)
+        print(f"{name}: {min(cells):.10g} to {max(cells):.10g}, expected "
+              f"{value:.10g} (largest relative deviation {worst:.2e})")
+        if worst > tolerance:
+            problems.append(f"{name} off {value:g} by {worst:.2e} of it "
+                            f"(allowed {tolerance:g})")
+    return problems
 
 
 def main():
@@ -20,9 +47,17 @@ def main():
     parser.add_argument("--coshell", required=True)
     parser.add_argument("--prm", required=True)
     parser.add_argument("--output", required=True)
+    parser.add_argument("--level", type=int, default=1)
+    parser.add_argument("--set", action="append", default=[],
+                        help="a parameter assignment passed to coshell")
+    parser.add_argument("--uniform-strains", type=float, nargs=4,
+                        metavar=("MEMBRANE", "BENDING", "SURFACE", "RTOL"))
     args = parser.parse_args()
-    subprocess.run([args.coshell, args.prm, "--output", args.output,
-                    "--set", "Mesh/Refinement levels=1"], check=True)
+    command = [args.coshell, args.prm, "--output", args.output,
+               "--set", f"Mesh/Refinement levels={args.level}"]
+    for assignment in args.set:
+        command += ["--set", assignment]
+    subprocess.run(command, check=True)
     with open(os.path.join(args.output, "summary.json")) as f:
         summary = json.load(f)
 
@@ -45,11 +80,17 @@ def main():
     for name in CELL_FIELDS:
         if name not in cell_arrays:
             problems.append(f"cell field {name} missing")
+    if args.uniform_strains and not problems:
+        problems += uniform_strain_problems(
+            os.path.join(args.output, "solution.vtu"),
+            args.uniform_strains[:3], args.uniform_strains[3])
     print("point fields:", point_arrays)
     print("cell fields:", sorted(cell_arrays))
     for p in problems:
         print("FAIL:", p)
-    print(f"{len(POINT_FIELDS) + len(CELL_FIELDS) + 2 - len(problems)} passed, "
+    checks = len(POINT_FIELDS) + len(CELL_FIELDS) + 2 + \
+        (len(STRAINS) if args.uniform_strains else 0)
+    print(f"{checks - len(problems)} passed, "
           f"{len(problems)} failed")
     sys.exit(1 if problems else 0)
 

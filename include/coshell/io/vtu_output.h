@@ -7,6 +7,7 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <deque>
 #include <map>
 #include <string>
 #include <vector>
@@ -85,14 +86,15 @@ namespace coshell::io
                               const std::string              &name,
                               double                          time,
                               const std::vector<std::string> &companions);
-    /// Displacement, rotation, the extra DoF fields, N, M, material id
-    /// and thickness; 'storage' keeps the cell fields alive.
+    /// Displacement, rotation, the extra DoF fields, N, M, material id,
+    /// thickness and the cells' strains; 'storage' keeps the cell fields
+    /// alive (a deque: DataOut holds references to its entries).
     void add_fields(dealii::DataOut<2, 3>                       &data_out,
                     const model::ShellModel                     &model,
                     const dealii::Vector<double>                &solution,
                     const std::vector<element::ShellResultants> &resultants,
                     const std::vector<DofField>                 &fields,
-                    std::vector<dealii::Vector<double>>         &storage) const;
+                    std::deque<dealii::Vector<double>>          &storage) const;
     /// This rank's NAME.piece-RANK.vtu and, on rank 0, NAME.pvtu.
     void         write_pieces(const dealii::DataOut<2, 3> &data_out,
                               const std::string           &directory,

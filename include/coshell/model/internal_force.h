@@ -87,6 +87,20 @@ namespace coshell::model
     double cell_energy(const CellIterator &cell, const ShellState &state) const;
   };
 
+  /// The strains of one cell, recovered from its resultants through its
+  /// isotropic material, each the largest principal value in magnitude:
+  /// the mid-surface (membrane) strain, the bending strain at the surfaces
+  /// (h/2 times the curvature), and the strain at the upper or lower
+  /// surface, the tensor sum of the two, which is what the material there
+  /// undergoes (less than membrane + bending when their principal axes
+  /// differ).
+  struct CellStrains
+  {
+    double membrane = 0, bending = 0, surface = 0;
+  };
+  CellStrains cell_strains(const element::ShellMaterial   &material,
+                           const element::ShellResultants &resultants);
+
   /// The largest principal membrane strain and bending surface strain
   /// (h/2 times the principal curvature) over the cells, in magnitude,
   /// recovered from the resultants through each cell's isotropic material.
