@@ -364,15 +364,43 @@ def check_fold(checks, history, args):
           f"{chord[-1]:.4g} mm folded")
     checks(f"the wings fold the optic to {args.fold_only:g} mm or less",
            chord[-1] <= args.fold_only)
+    last = render_vtu.read_pvd(os.path.join(args.output, "solution.pvd"))[-1]
+    check_strain_fields(checks, history, last)
     if args.figures:
         os.makedirs(args.figures, exist_ok=True)
-        last = render_vtu.read_pvd(
-            os.path.join(args.output, "solution.pvd"))[-1].shell_file
+        title = f"folded lens, t = {last.time:.3g} s"
         checks("the folded lens is drawn", render([
-            "--vtu", last,
+            "--vtu", last.shell_file,
             "--out", os.path.join(args.figures, "folded_lens.png"),
             "--view", "20", "-150", "--fit", "shell", "--edges", "--title",
-            f"folded lens, t = {column(history, 'time')[-1]:.3g} s"]))
+            title]))
+        checks("the folded lens's surface strain is drawn", render([
+            "--vtu", last.shell_file,
+            "--out", os.path.join(args.figures, "folded_lens_strain.png"),
+            "--view", "20", "-150", "--fit", "shell", "--edges",
+            "--color-by", "surface_strain", "--title",
+            title + ", largest principal strain at either surface"]))
+
+
+def check_strain_fields(checks, history, frame):
+    """The VTU's per-cell strains against the time history's largest ones
+    of the same step: the same recovery, written two ways (VTU in float32).
+    Reports where and how large the surface strain is."""
+    row = min(history, key=lambda r: abs(float(r["time"]) - frame.time))
+    mesh = render_vtu.read_vtu(frame.shell_file)
+    cells = {name: render_vtu.cell_means(
+                 mesh, mesh.point_data[name + "_strain"].astype(np.float64))
+             for name in ("membrane", "bending", "surface")}
+    for name in ("membrane", "bending"):
+        listed = float(row[f"max_{name}_strain"])
+        drawn = float(np.max(cells[name]))
+        checks(f"largest {name} strain of the VTU at t = {frame.time:.6g} s "
+               f"({drawn:.6g}) is the time history's ({listed:.6g})",
+               abs(drawn - listed) <= 1e-6 * listed)
+    material = render_vtu.cell_means(mesh, mesh.point_data["material_id"])
+    worst = int(np.argmax(cells["surface"]))
+    print(f"largest surface strain {cells['surface'][worst]:.4g} in a cell "
+          f"of material {int(round(material[worst]))} (1 optic, 2 haptic)")
 
 
 def main():
