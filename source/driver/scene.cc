@@ -623,6 +623,7 @@ namespace coshell::driver
         largest = model::largest_strains(model, internal->resultants(state));
       values["max_membrane_strain"] = largest.membrane;
       values["max_bending_strain"]  = largest.bending;
+      values["max_surface_strain"]  = largest.surface;
     }
     return values;
   }

@@ -292,6 +292,7 @@ namespace coshell::model
           model.material(cell), resultants[cell->active_cell_index()]);
       largest.membrane = std::max(largest.membrane, strains.membrane);
       largest.bending  = std::max(largest.bending, strains.bending);
+      largest.surface  = std::max(largest.surface, strains.surface);
     }
     return largest;
   }

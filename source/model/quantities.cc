@@ -88,7 +88,10 @@ namespace coshell::model
                       "principal membrane strain and the largest bending "
                       "strain at the surfaces (h/2 times the principal "
                       "curvature) over the cells, as max_membrane_strain "
-                      "and max_bending_strain (dimensionless), from the "
+                      "and max_bending_strain, and the largest principal "
+                      "strain at either surface (the two as tensors "
+                      "summed) as max_surface_strain (dimensionless), "
+                      "from the "
                       "stress resultants and the cell's material.");
     prm.leave_subsection();
   }

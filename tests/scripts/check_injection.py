@@ -291,7 +291,8 @@ def plot(args, history, time, displacement, push, chord):
                        label="nozzle inner diameter")
     axes[0, 1].set(xlabel="time (s)", ylabel="mm")
     axes[0, 1].legend(fontsize=8)
-    for name in ("max_membrane_strain", "max_bending_strain"):
+    for name in ("max_membrane_strain", "max_bending_strain",
+                 "max_surface_strain"):
         if name in history[0]:
             axes[1, 0].plot(t, 100 * column(history, name),
                             label=name.replace("_", " "))
@@ -391,7 +392,7 @@ def check_strain_fields(checks, history, frame):
     cells = {name: render_vtu.cell_means(
                  mesh, mesh.point_data[name + "_strain"].astype(np.float64))
              for name in ("membrane", "bending", "surface")}
-    for name in ("membrane", "bending"):
+    for name in ("membrane", "bending", "surface"):
         listed = float(row[f"max_{name}_strain"])
         drawn = float(np.max(cells[name]))
         checks(f"largest {name} strain of the VTU at t = {frame.time:.6g} s "

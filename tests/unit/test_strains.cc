@@ -80,6 +80,7 @@ TEST(LargestStrains, UniformStretchIsTheMembraneStrain)
              plate.model, plate.model.resultants(plate.field(1e-3, 0)));
   EXPECT_NEAR(largest.membrane, 1e-3, 1e-12);
   EXPECT_NEAR(largest.bending, 0, 1e-12);
+  EXPECT_NEAR(largest.surface, 1e-3, 1e-12);
 }
 
 TEST(LargestStrains, UniformCurvatureGivesHalfThicknessTimesCurvature)
@@ -90,6 +91,7 @@ TEST(LargestStrains, UniformCurvatureGivesHalfThicknessTimesCurvature)
                plate.model, plate.model.resultants(plate.field(0, curvature)));
   EXPECT_NEAR(largest.bending, 0.5 * 0.1 * curvature, 1e-12);
   EXPECT_NEAR(largest.membrane, 0, 1e-12);
+  EXPECT_NEAR(largest.surface, 0.5 * 0.1 * curvature, 1e-12);
 }
 
 // Stretch and curvature along the same axis: the surfaces' strains are

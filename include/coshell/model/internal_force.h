@@ -101,12 +101,11 @@ namespace coshell::model
   CellStrains cell_strains(const element::ShellMaterial   &material,
                            const element::ShellResultants &resultants);
 
-  /// The largest principal membrane strain and bending surface strain
-  /// (h/2 times the principal curvature) over the cells, in magnitude,
-  /// recovered from the resultants through each cell's isotropic material.
+  /// The largest of each of a cell's strains (cell_strains) over the
+  /// cells.
   struct LargestStrains
   {
-    double membrane = 0, bending = 0;
+    double membrane = 0, bending = 0, surface = 0;
   };
   LargestStrains
   largest_strains(const ShellModel                            &model,
