@@ -84,7 +84,8 @@ def check_held(checks, last, args):
                                    3 + u["rim_ux"] - u["optic_ux"]))
     print(f"optic centre moved {drift:.3g} mm, optic turned {turn:.3g} "
           "degrees about its axis; largest bending strain "
-          f"{100 * float(last['max_bending_strain']):.3g} %")
+          f"{100 * float(last['max_bending_strain']):.3g} %, surface strain "
+          f"{100 * float(last['max_surface_strain']):.3g} %")
     checks(f"the tools hold the optic (its centre moves less than "
            f"{args.optic_drift:g} mm, it turns less than {args.optic_turn:g} "
            "degrees)", drift < args.optic_drift and abs(turn) < args.optic_turn)
@@ -116,14 +117,21 @@ def draw(checks, args, history):
         "--out", os.path.join(args.figures, "tucked"),
         "--montage", os.path.join(args.figures, "tucked_lens.png"),
         "--title", f"haptics tucked onto the optic, t = {end:.3g} s"])
+    strain = subprocess.run(common + [
+        "--last", "--view", "35", "-60", "--edges",
+        "--color-by", "surface_strain",
+        "--out", os.path.join(args.figures, "tucked_strain"),
+        "--montage", os.path.join(args.figures, "tucked_lens_strain.png"),
+        "--title", f"surface strain of the tucked lens, t = {end:.3g} s"])
     times = [str(end * k / 5) for k in range(1, 6)]
     sequence = subprocess.run(common + [
         "--times", *times, "--view", "35", "-60",
         "--out", os.path.join(args.figures, "tuck"),
         "--montage", os.path.join(args.figures, "tuck_sequence.png"),
         "--montage-columns", "5"])
-    checks("the tucked lens and the tuck's sequence are drawn",
-           drawn.returncode == 0 and sequence.returncode == 0)
+    checks("the tucked lens, its strain and the tuck's sequence are drawn",
+           drawn.returncode == 0 and strain.returncode == 0 and
+           sequence.returncode == 0)
 
 
 def main():
