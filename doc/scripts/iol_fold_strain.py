@@ -1,0 +1,147 @@
+#!/usr/bin/python3
+"""How far the folded lens's strains are converged: the fold stage of the
+IOL injection (prm/iol/injection.prm, stage 1 only, 1.3 s), one thread,
+on the refinement study's lens meshes (iol_refinement.py's MESHES, about
+200 to 8 000 triangles). Per mesh, from the last VTU (the wings closed):
+the largest surface, bending and membrane strain (the VTU's per-cell
+strain fields) in three regions: the optic inside --rim (mm from its
+centre), where the largest lies along the fold line, a smooth curl; the
+optic's rim outside it, where the haptics join the optic's edge (a corner
+and a step in thickness, whose peak a shell cannot resolve); and the
+haptics. Each region's largest surface strain is placed by its cell's
+rest coordinates (the lens in z = 0, the injection axis along x).
+Runs the meshes two at a time (--jobs) and writes
+doc/performance/iol_fold_strain.csv and .png, stamped with machine and
+commit.
+
+  /usr/bin/python3 doc/scripts/iol_fold_strain.py --coshell build/coshell \\
+      [--meshes 4] [--jobs 2]
+"""
+import argparse
+import concurrent.futures
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import time
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from doc_common import ROOT, finish_plot, machine_and_commit, write_csv  # noqa: E402
+from iol_refinement import MESHES, SCENE  # noqa: E402
+import render_vtu  # noqa: E402
+
+import matplotlib  # noqa: E402
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+OUT = os.path.join(ROOT, "doc", "performance")
+OPTIC, HAPTICS = 1, 2  # material ids of lens.geo
+
+
+def fold(sizes, coshell, work):
+    """Runs the fold on one lens mesh; returns its output directory."""
+    optic, haptic = sizes
+    output = os.path.join(work, f"lens_{optic}_{haptic}")
+    command = [coshell, SCENE, "--output", output]
+    for assignment in [
+            f"Mesh/Gmsh parameters=optic_mesh_size = {optic}, "
+            f"haptic_mesh_size = {haptic}",
+            "Stage 2/Analysis type=none", "Stage 3/Analysis type=none",
+            "Parallel/Threads=1"]:
+        command += ["--set", assignment]
+    start = time.time()
+    subprocess.run(command, check=True, stdout=subprocess.DEVNULL,
+                   env=dict(os.environ, OPENBLAS_NUM_THREADS="1"))
+    return output, time.time() - start
+
+
+def regions(mesh, rim):
+    """Cell masks of the optic's interior, the optic's rim and the
+    haptics, by material and rest radius."""
+    material = np.rint(render_vtu.cell_means(
+        mesh, mesh.point_data["material_id"].astype(np.float64)))
+    # deal.II writes the reference positions; the displacement apart.
+    rest = render_vtu.cell_means(mesh, mesh.points)
+    radius = np.hypot(rest[:, 0], rest[:, 1])
+    return rest, {"optic": (material == OPTIC) & (radius < rim),
+                  "optic_rim": (material == OPTIC) & (radius >= rim),
+                  "haptics": material == HAPTICS}
+
+
+def folded_strains(sizes, output, seconds, rim):
+    """The largest strains per region of the last VTU."""
+    with open(os.path.join(output, "summary.json")) as f:
+        summary = json.load(f)
+    last = render_vtu.read_pvd(os.path.join(output, "solution.pvd"))[-1]
+    mesh = render_vtu.read_vtu(last.shell_file)
+    rest, masks = regions(mesh, rim)
+    row = {"optic_mesh_size_mm": sizes[0], "haptic_mesh_size_mm": sizes[1],
+           "triangles": summary["n_cells"], "time_s": last.time,
+           "newton_iterations": summary["newton_iterations"],
+           "wall_s": round(seconds, 1)}
+    for kind in ("surface", "bending", "membrane"):
+        cells = render_vtu.cell_means(
+            mesh, mesh.point_data[kind + "_strain"].astype(np.float64))
+        for region, mask in masks.items():
+            inside = np.flatnonzero(mask)
+            worst = inside[np.argmax(cells[inside])]
+            row[f"{region}_{kind}_strain"] = round(float(cells[worst]), 5)
+            if kind == "surface":
+                row[f"{region}_largest_at_x_mm"] = round(float(rest[worst, 0]), 3)
+                row[f"{region}_largest_at_y_mm"] = round(float(rest[worst, 1]), 3)
+    return row
+
+
+def plot(rows, commit):
+    figure, axes = plt.subplots(figsize=(6.5, 4))
+    triangles = [r["triangles"] for r in rows]
+    for region, marker in (("optic", "o-"), ("optic_rim", "^:"),
+                           ("haptics", "s--")):
+        for kind in ("surface", "bending"):  # the CSV has the membrane's
+            axes.plot(triangles,
+                      [100 * r[f"{region}_{kind}_strain"] for r in rows],
+                      marker, label=f"{region.replace('_', ' ')}, {kind}")
+    axes.set_xscale("log")
+    axes.set_ylim(0, 45)  # the legend above the curves
+    finish_plot(figure, axes, "lens triangles",
+                "largest strain at the fold's end (%)",
+                f"IOL fold, strains against the mesh ({commit})",
+                os.path.join(OUT, "iol_fold_strain.png"))
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__)
+    parser.add_argument("--coshell", required=True)
+    parser.add_argument("--meshes", type=int, default=4)
+    parser.add_argument("--jobs", type=int, default=2)
+    parser.add_argument("--rim", type=float, default=2.5,
+                        help="radius (mm) from which the optic's rim counts")
+    parser.add_argument("--keep", help="a directory for the runs' output "
+                        "(default: a temporary one, removed)")
+    args = parser.parse_args()
+    coshell = os.path.abspath(args.coshell)
+    machine, commit = machine_and_commit()
+    meshes = MESHES[:args.meshes]
+    with tempfile.TemporaryDirectory() as scratch, \
+            concurrent.futures.ThreadPoolExecutor(args.jobs) as pool:
+        work = os.path.abspath(args.keep) if args.keep else scratch
+        runs = list(pool.map(lambda sizes: fold(sizes, coshell, work),
+                             meshes))
+        rows = [folded_strains(sizes, output, seconds, args.rim)
+                for sizes, (output, seconds) in zip(meshes, runs)]
+    for row in rows:
+        print(row)
+    write_csv(os.path.join(OUT, "iol_fold_strain.csv"), rows,
+              [f"machine: {machine}; commit {commit}",
+               "prm/iol/injection.prm, stage 1 (the fold) only, one thread "
+               f"per run, {args.jobs} runs at a time; strains from the "
+               f"last VTU; optic: rest radius < {args.rim:g} mm, optic_rim: "
+               "the rest of the optic"])
+    plot(rows, commit)
+
+
+if __name__ == "__main__":
+    main()
