@@ -417,6 +417,8 @@ def main():
                                                    args.output)
     chord = check_fold_and_exit(checks, history, args)
     frames = check_deployment(checks, history, args, args.output)
+    check_strain_fields(checks, history, render_vtu.read_pvd(
+        os.path.join(args.output, "solution.pvd"))[-1])
     check_energy(checks, history, forces, args)
     with open(os.path.join(args.output, "summary.json")) as f:
         summary = json.load(f)
