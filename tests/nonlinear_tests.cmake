@@ -33,7 +33,8 @@ coshell_nonlinear_test(corotational.cantilever_end_moment
 # The VTU's strain fields of the strip rolled into a circle, against the
 # elastica: bending strain h k / 2 in every cell, no membrane strain; the
 # co-rotational strip's spurious membrane strain and its bending and
-# surface strains' errors fall at order 2 or more (doc/validation.md).
+# surface strains' errors fall at order 2 or about (at least 1.8 asserted;
+# measured 1.94 to 2.87, doc/validation.md).
 add_test(NAME corotational.cantilever_end_moment.strain_fields
   COMMAND ${COSHELL_PYTHON}
           ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_elastica_strains.py

@@ -142,6 +142,23 @@ add_test(NAME vtu_output_strains.uniform
           --set "Loads/Point forces=12 0 0 : 6 0 0$<SEMICOLON> 12 0.5 0 : 12 0 0$<SEMICOLON> 12 1 0 : 6 0 0"
           --uniform-strains 2e-4 5e-4 7e-4 1e-6)
 set_tests_properties(vtu_output_strains.uniform PROPERTIES LABELS system)
+# The same with ANDES, the IOL's membrane (the default above is CST).
+# ANDES's edge displacement has a quadratic part driven by the drilling
+# rotations (amplitude alpha_b L (theta_j - theta_i) / 8, alpha_b = 3/2),
+# so the consistent load of a uniform edge traction p adds drilling
+# moments -+ alpha_b p L^2 / 12 = -+0.75 at the loaded edge's ends
+# (p = 24, L = 0.5; they cancel at the middle vertex). Without them the
+# membrane strain varies by 14 % along the strip (doc/validation.md).
+add_test(NAME vtu_output_strains.uniform.andes
+  COMMAND ${COSHELL_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_vtu.py
+          --coshell $<TARGET_FILE:coshell>
+          --prm ${COSHELL_PRM}/plates/cantilever_end_moment_linear.prm
+          --output ${CMAKE_CURRENT_BINARY_DIR}/output/vtu_output_strains.uniform.andes
+          --level 0 --set "Element/Membrane element=andes"
+          --set "Loads/Point forces=12 0 0 : 6 0 0$<SEMICOLON> 12 0.5 0 : 12 0 0$<SEMICOLON> 12 1 0 : 6 0 0"
+          --set "Loads/Point moments=12 0 0 : 0 -0.25 -0.75$<SEMICOLON> 12 0.5 0 : 0 -0.5 0$<SEMICOLON> 12 1 0 : 0 -0.25 0.75"
+          --uniform-strains 2e-4 5e-4 7e-4 1e-6)
+set_tests_properties(vtu_output_strains.uniform.andes PROPERTIES LABELS system)
 
 # Every linear solver gives the same answer on the clamped plate.
 foreach(method cholmod umfpack amesos-klu amesos-mumps cg-amg)

@@ -61,8 +61,7 @@ def fold(sizes, coshell, work):
 def regions(mesh, rim):
     """Cell masks of the optic's interior, the optic's rim and the
     haptics, by material and rest radius."""
-    material = np.rint(render_vtu.cell_means(
-        mesh, mesh.point_data["material_id"].astype(np.float64)))
+    material = np.rint(render_vtu.cell_field(mesh, "material_id"))
     # deal.II writes the reference positions; the displacement apart.
     rest = render_vtu.cell_means(mesh, mesh.points)
     radius = np.hypot(rest[:, 0], rest[:, 1])
@@ -83,8 +82,7 @@ def folded_strains(sizes, output, seconds, rim):
            "newton_iterations": summary["newton_iterations"],
            "wall_s": round(seconds, 1)}
     for kind in ("surface", "bending", "membrane"):
-        cells = render_vtu.cell_means(
-            mesh, mesh.point_data[kind + "_strain"].astype(np.float64))
+        cells = render_vtu.cell_field(mesh, kind + "_strain")
         for region, mask in masks.items():
             inside = np.flatnonzero(mask)
             worst = inside[np.argmax(cells[inside])]

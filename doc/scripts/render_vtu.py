@@ -348,6 +348,12 @@ def cell_means(mesh, values):
     return sums / mesh.cell_sizes.reshape((-1,) + (1,) * (values.ndim - 1))
 
 
+def cell_field(mesh, name):
+    """A cell field of a deal.II VTU (written as point data), one float64
+    value per cell."""
+    return cell_means(mesh, mesh.point_data[name].astype(np.float64))
+
+
 def face_values(mesh, field_name):
     """(per-cell values, colour-bar label) of the field to colour by."""
     if field_name == "none":

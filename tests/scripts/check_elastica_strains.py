@@ -36,8 +36,7 @@ def last_strains(coshell, prm, output, subdivisions):
                    check=True, stdout=subprocess.DEVNULL)
     frames = render_vtu.read_pvd(os.path.join(output, "solution.pvd"))
     mesh = render_vtu.read_vtu(frames[-1].shell_file)
-    return {name: render_vtu.cell_means(
-                mesh, mesh.point_data[name + "_strain"].astype(np.float64))
+    return {name: render_vtu.cell_field(mesh, name + "_strain")
             for name in ("membrane", "bending", "surface")}
 
 

@@ -389,8 +389,7 @@ def check_strain_fields(checks, history, frame):
     Reports where and how large the surface strain is."""
     row = min(history, key=lambda r: abs(float(r["time"]) - frame.time))
     mesh = render_vtu.read_vtu(frame.shell_file)
-    cells = {name: render_vtu.cell_means(
-                 mesh, mesh.point_data[name + "_strain"].astype(np.float64))
+    cells = {name: render_vtu.cell_field(mesh, name + "_strain")
              for name in ("membrane", "bending", "surface")}
     for name in ("membrane", "bending", "surface"):
         listed = float(row[f"max_{name}_strain"])
@@ -398,7 +397,7 @@ def check_strain_fields(checks, history, frame):
         checks(f"largest {name} strain of the VTU at t = {frame.time:.6g} s "
                f"({drawn:.6g}) is the time history's ({listed:.6g})",
                abs(drawn - listed) <= 1e-6 * listed)
-    material = render_vtu.cell_means(mesh, mesh.point_data["material_id"])
+    material = render_vtu.cell_field(mesh, "material_id")
     worst = int(np.argmax(cells["surface"]))
     print(f"largest surface strain {cells['surface'][worst]:.4g} in a cell "
           f"of material {int(round(material[worst]))} (1 optic, 2 haptic)")

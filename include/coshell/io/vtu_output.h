@@ -88,7 +88,10 @@ namespace coshell::io
                               const std::vector<std::string> &companions);
     /// Displacement, rotation, the extra DoF fields, N, M, material id,
     /// thickness and the cells' strains; 'storage' keeps the cell fields
-    /// alive (a deque: DataOut holds references to its entries).
+    /// alive until the output is written (deal.II 9.4 copies a vector when
+    /// it is added, older versions kept a reference; a deque keeps its
+    /// entries in place as it grows, which a vector does only up to its
+    /// reserve).
     void add_fields(dealii::DataOut<2, 3>                       &data_out,
                     const model::ShellModel                     &model,
                     const dealii::Vector<double>                &solution,
