@@ -27,7 +27,6 @@ import tempfile
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from doc_common import ROOT, finish_plot, machine_and_commit  # noqa: E402
 
-import render_vtu  # noqa: E402
 import matplotlib  # noqa: E402
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402

@@ -30,7 +30,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from doc_common import ROOT, finish_plot, machine_and_commit, write_csv  # noqa: E402
-from iol_refinement import MESHES, SCENE  # noqa: E402
+from iol_refinement import MESHES, lens_command  # noqa: E402
 import render_vtu  # noqa: E402
 
 import matplotlib  # noqa: E402
@@ -43,15 +43,8 @@ OPTIC, HAPTICS = 1, 2  # material ids of lens.geo
 
 def fold(sizes, coshell, work):
     """Runs the fold on one lens mesh; returns its output directory."""
-    optic, haptic = sizes
-    output = os.path.join(work, f"lens_{optic}_{haptic}")
-    command = [coshell, SCENE, "--output", output]
-    for assignment in [
-            f"Mesh/Gmsh parameters=optic_mesh_size = {optic}, "
-            f"haptic_mesh_size = {haptic}",
-            "Stage 2/Analysis type=none", "Stage 3/Analysis type=none",
-            "Parallel/Threads=1"]:
-        command += ["--set", assignment]
+    command, output = lens_command(sizes, coshell, work,
+                                   ["Stage 2/Analysis type=none"])
     start = time.time()
     subprocess.run(command, check=True, stdout=subprocess.DEVNULL,
                    env=dict(os.environ, OPENBLAS_NUM_THREADS="1"))

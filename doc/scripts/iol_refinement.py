@@ -54,16 +54,24 @@ def plunger_forces(output):
     return displacement, push, work
 
 
-def run(sizes, coshell, push, timeout, work):
+def lens_command(sizes, coshell, work, assignments):
+    """The scene on the lens of these gmsh sizes, on one thread, with
+    more assignments; returns the command and its output directory."""
     optic, haptic = sizes
     output = os.path.join(work, f"lens_{optic}_{haptic}")
     command = [coshell, SCENE, "--output", output]
     for assignment in [
             f"Mesh/Gmsh parameters=optic_mesh_size = {optic}, "
             f"haptic_mesh_size = {haptic}",
-            f"Stage 2/Duration={push}", "Stage 3/Analysis type=none",
-            "Parallel/Threads=1"]:
+            "Stage 3/Analysis type=none", "Parallel/Threads=1"] + assignments:
         command += ["--set", assignment]
+    return command, output
+
+
+def run(sizes, coshell, push, timeout, work):
+    optic, haptic = sizes
+    command, output = lens_command(sizes, coshell, work,
+                                   [f"Stage 2/Duration={push}"])
     start = time.time()
     process = subprocess.run(command, stdout=subprocess.DEVNULL,
                              stderr=subprocess.PIPE, text=True,

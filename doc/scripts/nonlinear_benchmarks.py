@@ -35,7 +35,6 @@ import math
 import os
 import shutil
 import subprocess
-import sys
 import time
 
 import matplotlib

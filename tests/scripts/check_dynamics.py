@@ -32,8 +32,6 @@ import csv
 import json
 import math
 import os
-import shutil
-import subprocess
 import sys
 
 from scene_runner import add_scene_arguments, kept_factors_failures, run_scene

@@ -28,8 +28,6 @@ import csv
 import json
 import math
 import os
-import shutil
-import subprocess
 import sys
 
 from scene_runner import add_scene_arguments, run_scene
