@@ -70,11 +70,12 @@ namespace coshell::io
 
   namespace
   {
-    /// One cell-data field per independent tensor component.
+    /// One cell-data field per independent tensor component. DataOut
+    /// copies each vector as it is added (deal.II 9.4's DataEntry), so the
+    /// fields may be temporaries.
     void add_tensor_fields(DataOut<2, 3>                   &data_out,
                            const std::vector<Tensor<2, 3>> &tensors,
-                           const std::string               &symbol,
-                           std::deque<Vector<double>>      &storage)
+                           const std::string               &symbol)
     {
       static const std::array<std::pair<unsigned int, unsigned int>, 6>
           entries = {{{0, 0}, {1, 1}, {2, 2}, {0, 1}, {1, 2}, {0, 2}}};
@@ -85,12 +86,9 @@ namespace coshell::io
         Vector<double> field(tensors.size());
         for (unsigned int c = 0; c < tensors.size(); ++c)
           field[c] = tensors[c][entries[e].first][entries[e].second];
-        storage.push_back(field);
-      }
-      for (unsigned int e = 0; e < entries.size(); ++e)
-        data_out.add_data_vector(storage[storage.size() - entries.size() + e],
-                                 symbol + "_" + suffix[e],
+        data_out.add_data_vector(field, symbol + "_" + suffix[e],
                                  DataOut<2, 3>::type_cell_data);
+      }
     }
 
     /// Per cell: material id, thickness and the largest principal
@@ -98,8 +96,7 @@ namespace coshell::io
     void
     add_cell_scalars(DataOut<2, 3>                               &data_out,
                      const model::ShellModel                     &model,
-                     const std::vector<element::ShellResultants> &resultants,
-                     std::deque<Vector<double>>                  &storage)
+                     const std::vector<element::ShellResultants> &resultants)
     {
       static const std::array<std::string, 5> names = {
           {"material_id", "thickness", "membrane_strain", "bending_strain",
@@ -119,11 +116,8 @@ namespace coshell::io
         fields[4][c]       = strains.surface;
       }
       for (unsigned int f = 0; f < fields.size(); ++f)
-      {
-        storage.push_back(std::move(fields[f]));
-        data_out.add_data_vector(storage.back(), names[f],
+        data_out.add_data_vector(fields[f], names[f],
                                  DataOut<2, 3>::type_cell_data);
-      }
     }
   } // namespace
 
@@ -161,8 +155,7 @@ namespace coshell::io
                         const model::ShellModel                     &model,
                         const Vector<double>                        &solution,
                         const std::vector<element::ShellResultants> &resultants,
-                        const std::vector<DofField>                 &fields,
-                        std::deque<Vector<double>> &storage) const
+                        const std::vector<DofField> &fields) const
   {
     std::vector<std::string> names(3, "displacement");
     names.insert(names.end(), 3, "rotation");
@@ -188,9 +181,9 @@ namespace coshell::io
       membrane.push_back(r.membrane_global);
       bending.push_back(r.bending_global);
     }
-    add_tensor_fields(data_out, membrane, "N", storage);
-    add_tensor_fields(data_out, bending, "M", storage);
-    add_cell_scalars(data_out, model, resultants, storage);
+    add_tensor_fields(data_out, membrane, "N");
+    add_tensor_fields(data_out, bending, "M");
+    add_cell_scalars(data_out, model, resultants);
   }
 
   std::string
@@ -213,8 +206,7 @@ namespace coshell::io
                          output_directory + "/" + name + ".vertices.csv");
     DataOut<2, 3> data_out;
     data_out.attach_dof_handler(model.dof_handler());
-    std::deque<Vector<double>> storage;
-    add_fields(data_out, model, solution, resultants, fields, storage);
+    add_fields(data_out, model, solution, resultants, fields);
     if (pvtu_)
     {
       const unsigned int rank = solvers::this_rank();

@@ -7,7 +7,6 @@
 
 #include <deal.II/base/parameter_handler.h>
 
-#include <deque>
 #include <map>
 #include <string>
 #include <vector>
@@ -87,17 +86,12 @@ namespace coshell::io
                               double                          time,
                               const std::vector<std::string> &companions);
     /// Displacement, rotation, the extra DoF fields, N, M, material id,
-    /// thickness and the cells' strains; 'storage' keeps the cell fields
-    /// alive until the output is written (deal.II 9.4 copies a vector when
-    /// it is added, older versions kept a reference; a deque keeps its
-    /// entries in place as it grows, which a vector does only up to its
-    /// reserve).
+    /// thickness and the cells' strains.
     void add_fields(dealii::DataOut<2, 3>                       &data_out,
                     const model::ShellModel                     &model,
                     const dealii::Vector<double>                &solution,
                     const std::vector<element::ShellResultants> &resultants,
-                    const std::vector<DofField>                 &fields,
-                    std::deque<dealii::Vector<double>>          &storage) const;
+                    const std::vector<DofField>                 &fields) const;
     /// This rank's NAME.piece-RANK.vtu and, on rank 0, NAME.pvtu.
     void         write_pieces(const dealii::DataOut<2, 3> &data_out,
                               const std::string           &directory,
