@@ -222,6 +222,20 @@ coshell_iol_test(iol.injection.fold.modified_l check_injection.py
                  --set "Stage 2/Analysis type=none"
                  --set "Stage 3/Analysis type=none"
                  --fold-only 3.7)
+# The fold of a lens whose haptic-optic junctions are rounded (lens.geo
+# junction_fillet = 0.25 mm, coarse: 428 triangles). The rest mesh's
+# outline against fillets computed from the lens's dimensions alone
+# (tests/scripts/lens_junctions.py): each fillet carries outline vertices,
+# both tangent points among them; the rim and the haptic edge stop at the
+# tangent points, short of the sharp lens's corner; every outline vertex
+# near the optic lies on the rim, an edge or a fillet. The sharp lens fails
+# the first two (eight failures, checked by hand). Then the fold's checks.
+coshell_iol_test(iol.injection.fold.junction_fillet check_injection.py
+                 injection.prm
+                 --set "${coarse_lens}, junction_fillet = 0.25"
+                 --set "Stage 2/Analysis type=none"
+                 --set "Stage 3/Analysis type=none"
+                 --junction-fillet 0.25 --fold-only 3.7)
 # Co-rotational against linear kinematics on the same fold, to t = 0.6 s
 # (wings 54 degrees closed): the optic's line rim-centre-rim stays within
 # 3 % of its 6 mm with co-rotation (folding by bending; measured 1.9 %)

@@ -12,10 +12,12 @@ haptics. Each region's largest surface strain is placed by its cell's
 rest coordinates (the lens in z = 0, the injection axis along x).
 Runs the meshes two at a time (--jobs) and writes
 doc/performance/iol_fold_strain.csv and .png, stamped with machine and
-commit.
+commit. With --fillet F the lenses' haptic-optic junctions are rounded
+(lens.geo's junction_fillet = F mm), and the files are
+iol_fold_strain_fillet.csv and .png.
 
   /usr/bin/python3 doc/scripts/iol_fold_strain.py --coshell build/coshell \\
-      [--meshes 4] [--jobs 2]
+      [--meshes 4] [--jobs 2] [--fillet 0.25]
 """
 import argparse
 import concurrent.futures
@@ -41,10 +43,11 @@ OUT = os.path.join(ROOT, "doc", "performance")
 OPTIC, HAPTICS = 1, 2  # material ids of lens.geo
 
 
-def fold(sizes, coshell, work):
+def fold(sizes, coshell, work, fillet):
     """Runs the fold on one lens mesh; returns its output directory."""
-    command, output = lens_command(sizes, coshell, work,
-                                   ["Stage 2/Analysis type=none"])
+    command, output = lens_command(
+        sizes, coshell, work, ["Stage 2/Analysis type=none"],
+        f"junction_fillet = {fillet}" if fillet > 0 else "")
     start = time.time()
     subprocess.run(command, check=True, stdout=subprocess.DEVNULL,
                    env=dict(os.environ, OPENBLAS_NUM_THREADS="1"))
@@ -86,7 +89,7 @@ def folded_strains(sizes, output, seconds, rim):
     return row
 
 
-def plot(rows, commit):
+def plot(rows, commit, name, fillet):
     figure, axes = plt.subplots(figsize=(6.5, 4))
     triangles = [r["triangles"] for r in rows]
     for region, marker in (("optic", "o-"), ("optic_rim", "^:"),
@@ -99,8 +102,10 @@ def plot(rows, commit):
     axes.set_ylim(0, 45)  # the legend above the curves
     finish_plot(figure, axes, "lens triangles",
                 "largest strain at the fold's end (%)",
-                f"IOL fold, strains against the mesh ({commit})",
-                os.path.join(OUT, "iol_fold_strain.png"))
+                "IOL fold, strains against the mesh"
+                + (f", junctions filleted {fillet:g} mm" if fillet > 0 else "")
+                + f" ({commit})",
+                os.path.join(OUT, name + ".png"))
 
 
 def main():
@@ -110,6 +115,9 @@ def main():
     parser.add_argument("--jobs", type=int, default=2)
     parser.add_argument("--rim", type=float, default=2.5,
                         help="radius (mm) from which the optic's rim counts")
+    parser.add_argument("--fillet", type=float, default=0.0,
+                        help="radius (mm) of the haptic-optic junctions' "
+                        "fillet (default 0: sharp, the scene's lens)")
     parser.add_argument("--keep", help="a directory for the runs' output "
                         "(default: a temporary one, removed)")
     args = parser.parse_args()
@@ -119,19 +127,22 @@ def main():
     with tempfile.TemporaryDirectory() as scratch, \
             concurrent.futures.ThreadPoolExecutor(args.jobs) as pool:
         work = os.path.abspath(args.keep) if args.keep else scratch
-        runs = list(pool.map(lambda sizes: fold(sizes, coshell, work),
-                             meshes))
+        runs = list(pool.map(
+            lambda sizes: fold(sizes, coshell, work, args.fillet), meshes))
         rows = [folded_strains(sizes, output, seconds, args.rim)
                 for sizes, (output, seconds) in zip(meshes, runs)]
     for row in rows:
         print(row)
-    write_csv(os.path.join(OUT, "iol_fold_strain.csv"), rows,
+    name = "iol_fold_strain" + ("_fillet" if args.fillet > 0 else "")
+    write_csv(os.path.join(OUT, name + ".csv"), rows,
               [f"machine: {machine}; commit {commit}",
                "prm/iol/injection.prm, stage 1 (the fold) only, one thread "
                f"per run, {args.jobs} runs at a time; strains from the "
                f"last VTU; optic: rest radius < {args.rim:g} mm, optic_rim: "
-               "the rest of the optic"])
-    plot(rows, commit)
+               "the rest of the optic"
+               + (f"; junctions filleted, radius {args.fillet:g} mm"
+                  if args.fillet > 0 else "")])
+    plot(rows, commit, name, args.fillet)
 
 
 if __name__ == "__main__":

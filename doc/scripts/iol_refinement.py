@@ -54,15 +54,18 @@ def plunger_forces(output):
     return displacement, push, work
 
 
-def lens_command(sizes, coshell, work, assignments):
+def lens_command(sizes, coshell, work, assignments, lens_constants=""):
     """The scene on the lens of these gmsh sizes, on one thread, with
-    more assignments; returns the command and its output directory."""
+    more assignments and more lens.geo constants ("name = value, ...");
+    returns the command and its output directory."""
     optic, haptic = sizes
     output = os.path.join(work, f"lens_{optic}_{haptic}")
     command = [coshell, SCENE, "--output", output]
+    constants = f"optic_mesh_size = {optic}, haptic_mesh_size = {haptic}"
+    if lens_constants:
+        constants += ", " + lens_constants
     for assignment in [
-            f"Mesh/Gmsh parameters=optic_mesh_size = {optic}, "
-            f"haptic_mesh_size = {haptic}",
+            f"Mesh/Gmsh parameters={constants}",
             "Stage 3/Analysis type=none", "Parallel/Threads=1"] + assignments:
         command += ["--set", assignment]
     return command, output

@@ -25,6 +25,15 @@
 // Change any constant with Mesh/Gmsh parameters in the prm (e.g.
 // "haptic_width = 0.5, haptic_type = 1").
 //
+// Junction fillet: where a haptic's edge meets the optic's rim the
+// outline has a re-entrant corner, whose strain a shell cannot resolve (it
+// grows as the mesh is refined). junction_fillet > 0 rounds each corner by
+// an arc of that radius, tangent to the rim and to the haptic's edge. The
+// fillet is haptic material. Its boundary with the optic leaves the rim
+// along the radius at the fillet's tangent point and runs straight to the
+// old corner: were it the rim itself, it would meet the fillet arc
+// tangentially and leave triangles with a vanishing angle there.
+//
 // Physical groups: surface 1 optic, surface 2 haptics. With
 // haptics_only = 1 the file instead holds one haptic without the optic,
 // cut square at its root (physical curve 1) and at its tip (curve 2): the
@@ -45,7 +54,8 @@ DefineConstant[
   knee_radius = 0.6,       // mm, modified-L: centre-line radius of the knee
   knee_angle = 90,         // degrees, modified-L: turn of the knee
   arm_radius = 4.5,        // mm, modified-L: radius of the arm's centre line
-  arm_start = -70          // degrees, modified-L: the arm's start about its centre
+  arm_start = -70,         // degrees, modified-L: the arm's start about its centre
+  junction_fillet = 0      // mm, radius of a fillet where each haptic edge meets the optic rim (0: a sharp corner)
 ];
 
 scale = 2^(-refinement_level);
@@ -142,6 +152,123 @@ Macro ModifiedLOutline
   tip_x = arm_centre + arm_radius * Cos(tip_angle); tip_y = arm_radius * Sin(tip_angle);
 Return
 
+// The fillet at one junction of the first haptic, on its side k = 0
+// (inner edge of the C-loop, or the leg's side towards the knee's centre)
+// or k = 1. Sets the fillet's centre (px[k], py[k]), at junction_fillet
+// from the edge and optic_radius + junction_fillet from the lens centre;
+// its tangent points on the rim (tx[k], ty[k]) and on the edge (ex[k],
+// ey[k]); the corner (cx[k], cy[k]) where edge and rim meet.
+Macro JunctionFillet
+  f = junction_fillet; R = optic_radius; side = 2 * k - 1;
+  If (haptic_type == 0)
+    // The edge is the circle of radius re about (rho, 0); the fillet lies
+    // outside it on the outer edge and inside it on the inner edge.
+    re = haptic_radius + side * haptic_width / 2;
+    dh = re + side * f;
+    px[k] = ((R + f)^2 - dh^2 + rho^2) / (2 * rho);
+    If ((R + f)^2 <= px[k]^2 || dh <= 0)
+      Error("lens.geo: no junction fillet of radius %g fits the C-loop's edge (radius %g) at the optic rim", f, re);
+    EndIf
+    py[k] = -Sqrt((R + f)^2 - px[k]^2);
+    cx[k] = (R^2 - re^2 + rho^2) / (2 * rho); cy[k] = -Sqrt(R^2 - cx[k]^2);
+    ex[k] = rho + (px[k] - rho) * re / dh; ey[k] = py[k] * re / dh;
+  Else
+    // The edge is the leg's side line k0 + s d + sg h n, n = (-dy, dx),
+    // sg = +1 towards the knee's centre; the fillet lies beyond it.
+    sg = -side;
+    qx = k0x - sg * (h + f) * dy; qy = k0y + sg * (h + f) * dx;
+    qd = qx * dx + qy * dy;
+    If (qd^2 - qx^2 - qy^2 + (R + f)^2 <= 0)
+      Error("lens.geo: no junction fillet of radius %g fits the modified-L leg at the optic rim", f);
+    EndIf
+    s = -qd + Sqrt(qd^2 - qx^2 - qy^2 + (R + f)^2);
+    If (s >= 0)
+      Error("lens.geo: a junction fillet of radius %g reaches past the modified-L leg into its knee", f);
+    EndIf
+    px[k] = qx + s * dx; py[k] = qy + s * dy;
+    ex[k] = px[k] + sg * f * dy; ey[k] = py[k] - sg * f * dx;
+    qx = k0x - sg * h * dy; qy = k0y + sg * h * dx;
+    qd = qx * dx + qy * dy;
+    s = -qd + Sqrt(qd^2 - qx^2 - qy^2 + R^2);
+    cx[k] = qx + s * dx; cy[k] = qy + s * dy;
+  EndIf
+  tx[k] = px[k] * R / (R + f); ty[k] = py[k] * R / (R + f);
+Return
+
+// The first haptic's root with both fillets, one face: the two fillets,
+// the haptic up to a cut square across it through the farther of the two
+// edge tangent points, and a foot inside the optic, from each rim tangent
+// point junction_fillet deep along the radius and straight across. The
+// haptic is cut beyond both fillets so that the corners, filled, leave no
+// vertex behind: at the old obtuse corner the fillet is short, and a
+// vertex there would leave slivers.
+Macro HapticRoot
+  For k In {0:1}
+    Call JunctionFillet;
+    // How far along the haptic, towards its tip, the edge tangent point lies.
+    If (haptic_type == 0)
+      along[k] = Atan2(ey[k], ex[k] - rho);
+    Else
+      along[k] = (ex[k] - k0x) * dx + (ey[k] - k0y) * dy;
+    EndIf
+  EndFor
+  far = (along[1] > along[0]) ? 1 : 0; near = 1 - far;
+  // The cut's point (xx, xy) on the near side's edge.
+  If (haptic_type == 0)
+    re_near = haptic_radius + (2 * near - 1) * haptic_width / 2;
+    re_far = haptic_radius + (2 * far - 1) * haptic_width / 2;
+    xx = rho + (ex[far] - rho) * re_near / re_far; xy = ey[far] * re_near / re_far;
+  Else
+    sg_near = 1 - 2 * near;
+    xx = ex[far] - 2 * sg_near * h * dy; xy = ey[far] + 2 * sg_near * h * dx;
+  EndIf
+  For k In {0:1}
+    fpt[k] = newp; Point(fpt[k]) = {tx[k], ty[k], 0};
+    fpe[k] = newp; Point(fpe[k]) = {ex[k], ey[k], 0};
+    fpf[k] = newp; Point(fpf[k]) = {px[k], py[k], 0};
+    fpm[k] = newp; Point(fpm[k]) = {tx[k] * (1 - f / R), ty[k] * (1 - f / R), 0};
+  EndFor
+  cut = newp; Point(cut) = {xx, xy, 0};
+  // Round the outline from the rim tangent point of side 0.
+  rootline[] = {};
+  l = newl; Circle(l) = {fpt[0], fpf[0], fpe[0]}; rootline[] += l;
+  first = (far == 0) ? fpe[0] : cut; last = (far == 0) ? cut : fpe[1];
+  If (far == 1)
+    Call EdgeFromTo0;
+  EndIf
+  l = newl; Line(l) = {first, last}; rootline[] += l;
+  If (far == 0)
+    Call EdgeFromTo1;
+  EndIf
+  l = newl; Circle(l) = {fpe[1], fpf[1], fpt[1]}; rootline[] += l;
+  l = newl; Line(l) = {fpt[1], fpm[1]}; rootline[] += l;
+  l = newl; Line(l) = {fpm[1], fpm[0]}; rootline[] += l;
+  l = newl; Line(l) = {fpm[0], fpt[0]}; rootline[] += l;
+  loop = newll; Curve Loop(loop) = {rootline[]};
+  root = news; Plane Surface(root) = {loop};
+Return
+
+// The near side's edge between its fillet and the cut: side 0 from its
+// tangent point to the cut, or side 1 from the cut to its tangent point.
+Macro EdgeFromTo0
+  l = newl;
+  If (haptic_type == 0)
+    ph = newp; Point(ph) = {rho, 0, 0}; Circle(l) = {fpe[0], ph, cut};
+  Else
+    Line(l) = {fpe[0], cut};
+  EndIf
+  rootline[] += l;
+Return
+Macro EdgeFromTo1
+  l = newl;
+  If (haptic_type == 0)
+    ph = newp; Point(ph) = {rho, 0, 0}; Circle(l) = {cut, ph, fpe[1]};
+  Else
+    Line(l) = {cut, fpe[1]};
+  EndIf
+  rootline[] += l;
+Return
+
 If (haptic_type == 0)
   a0 = start_angle; a1 = tip_angle;
   r0 = haptic_radius - haptic_width / 2; r1 = haptic_radius + haptic_width / 2;
@@ -158,15 +285,35 @@ If (haptics_only)
   Physical Surface("haptic", 2) = {sector};
   MeshSize{PointsOf{Surface{sector};}} = haptic_mesh_size * scale;
 Else
-  // A round tip, then the second haptic, then the optic, made conforming.
-  cap = news; Disk(cap) = {tip_x, tip_y, 0, haptic_width / 2};
-  haptic() = BooleanUnion{ Surface{sector}; Delete; }{ Surface{cap}; Delete; };
-  second() = Rotate{{0, 0, 1}, {0, 0, 0}, Pi}{ Duplicata{ Surface{haptic(0)}; } };
-  optic = news; Disk(optic) = {0, 0, 0, optic_radius};
-  tool = news; Disk(tool) = {0, 0, 0, optic_radius};
-  outside() = BooleanDifference{ Surface{haptic(0), second(0)}; Delete; }{ Surface{tool}; Delete; };
-  pieces() = BooleanFragments{ Surface{optic}; Delete; }{ Surface{outside()}; Delete; };
-  inner() = Surface In BoundingBox{-optic_radius - 1e-6, -optic_radius - 1e-6, -1, optic_radius + 1e-6, optic_radius + 1e-6, 1};
+  If (junction_fillet <= 0)
+    // A round tip, then the second haptic, then the optic, made conforming.
+    cap = news; Disk(cap) = {tip_x, tip_y, 0, haptic_width / 2};
+    haptic() = BooleanUnion{ Surface{sector}; Delete; }{ Surface{cap}; Delete; };
+    second() = Rotate{{0, 0, 1}, {0, 0, 0}, Pi}{ Duplicata{ Surface{haptic(0)}; } };
+    optic = news; Disk(optic) = {0, 0, 0, optic_radius};
+    tool = news; Disk(tool) = {0, 0, 0, optic_radius};
+    outside() = BooleanDifference{ Surface{haptic(0), second(0)}; Delete; }{ Surface{tool}; Delete; };
+    pieces() = BooleanFragments{ Surface{optic}; Delete; }{ Surface{outside()}; Delete; };
+    inner() = Surface In BoundingBox{-optic_radius - 1e-6, -optic_radius - 1e-6, -1, optic_radius + 1e-6, optic_radius + 1e-6, 1};
+  Else
+    // As above, but the haptic outside the optic takes its root with the
+    // two fillets before it is copied, and the optic gives up the root's
+    // foot. A union of faces that only touch keeps them apart, so the
+    // haptic is a list of faces, made conforming by the fragments.
+    cap = news; Disk(cap) = {tip_x, tip_y, 0, haptic_width / 2};
+    haptic() = BooleanUnion{ Surface{sector}; Delete; }{ Surface{cap}; Delete; };
+    Call HapticRoot;
+    tool = news; Disk(tool) = {0, 0, 0, optic_radius};
+    haptic() = BooleanDifference{ Surface{haptic(0)}; Delete; }{ Surface{tool, root}; };
+    Recursive Delete{ Surface{tool}; }
+    haptic() += root;
+    second() = Rotate{{0, 0, 1}, {0, 0, 0}, Pi}{ Duplicata{ Surface{haptic()}; } };
+    optic = news; Disk(optic) = {0, 0, 0, optic_radius};
+    optic() = BooleanDifference{ Surface{optic}; Delete; }{ Surface{haptic(), second()}; };
+    pieces() = BooleanFragments{ Surface{optic()}; Delete; }{ Surface{haptic(), second()}; Delete; };
+    // The fragments split no face here, so the optic keeps its tag.
+    inner() = optic();
+  EndIf
   Physical Surface("optic", 1) = {inner()};
   Physical Surface("haptics", 2) = {pieces()};
   Physical Surface("haptics", 2) -= {inner()};

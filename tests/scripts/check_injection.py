@@ -21,6 +21,9 @@ through --set) and checks what the scene must show:
     energy stored in contact within 2 % of that work (a fixed obstacle,
     such as the cartridge, does no work; its friction dissipates).
 
+With --junction-fillet RADIUS the rest lens's outline at the haptic-optic
+junctions is checked against fillets of that radius (lens_junctions.py).
+
 With --fold-only WIDTH the run is the fold stage alone: the gaps, the
 energy and the optic's width at the end (<= WIDTH) are checked and the
 folded lens is drawn.
@@ -49,6 +52,7 @@ SCRIPTS = os.path.dirname(os.path.abspath(__file__))
 RENDER = os.path.join(SCRIPTS, "..", "..", "doc", "scripts", "render_vtu.py")
 sys.path.insert(0, os.path.dirname(RENDER))
 import render_vtu  # noqa: E402
+from lens_junctions import check_fillets  # noqa: E402
 
 
 def parse_arguments():
@@ -70,6 +74,10 @@ def parse_arguments():
                         help="largest optic deviation / optic diameter")
     parser.add_argument("--energy-tolerance", type=float, default=0.02)
     parser.add_argument("--figures", help="directory for the PNG files")
+    parser.add_argument("--junction-fillet", type=float, metavar="RADIUS",
+                        help="the lens's haptic-optic junctions are "
+                             "filleted (lens.geo junction_fillet, mm, "
+                             "C-loop): check the rest mesh's outline")
     parser.add_argument("--fold-only", type=float, metavar="WIDTH",
                         help="the run is the fold stage alone: check the "
                              "gaps, the energy and that the optic's width "
@@ -383,6 +391,20 @@ def check_fold(checks, history, args):
             title + ", largest principal strain at either surface"]))
 
 
+def check_junction_fillets(checks, args):
+    """The rest lens's outline at the haptic-optic junctions, from the
+    first VTU (deal.II writes each cell's own copies of its vertices:
+    merged here by position)."""
+    first = render_vtu.read_pvd(os.path.join(args.output, "solution.pvd"))[0]
+    mesh = render_vtu.read_vtu(first.shell_file)
+    triangles = np.array([mesh.cell_vertices[start:start + 3] for start in
+                          mesh.cell_starts[mesh.cell_sizes == 3]])
+    points, merged = np.unique(np.round(mesh.points, 6), axis=0,
+                               return_inverse=True)
+    check_fillets(checks, points, merged.reshape(-1)[triangles],
+                  args.junction_fillet)
+
+
 def check_strain_fields(checks, history, frame):
     """The VTU's per-cell strains against the time history's largest ones
     of the same step: the same recovery, written two ways (VTU in float32).
@@ -408,6 +430,8 @@ def main():
     checks, forces, history = run_contact_scene(
         args, "lens against the wings, rod, cartridge, plunger, bag and "
         "itself")
+    if args.junction_fillet:
+        check_junction_fillets(checks, args)
     if args.fold_only is not None:
         check_fold(checks, history, args)
         check_energy(checks, history, forces, args)
