@@ -57,6 +57,17 @@ def boundary_vertices(cells):
     return sorted({v for edge, n in count.items() if n == 1 for v in edge})
 
 
+def between(points, centre, start, end, margin=1e-6):
+    """Whether each point's angle about centre lies from that of start
+    (included) to that of end (not included), an arc of less than pi."""
+    def angle(p):
+        return np.arctan2(p[..., 1] - centre[1], p[..., 0] - centre[0])
+    span = (angle(end) - angle(start) + np.pi) % (2 * np.pi) - np.pi
+    offset = (angle(points) - angle(start) + np.pi) % (2 * np.pi) - np.pi
+    return (offset * np.sign(span) > -margin) \
+        & (offset * np.sign(span) < abs(span) - margin)
+
+
 def check_fillets(checks, points, cells, fillet, optic_radius=3.0,
                   tolerance=1e-4):
     """Checks a filleted lens's rest mesh (points in mm, triangles):
@@ -86,16 +97,16 @@ def check_fillets(checks, points, cells, fillet, optic_radius=3.0,
                f"them (off by {max(ends):.2g} mm)",
                on_fillet.sum() >= 2 and max(ends) < tolerance)
         # Filled, the rim and the edge stop at the fillet's tangent points:
-        # none of their outline vertices lies nearer the corner.
-        on_either = near[(on_rim < tolerance) | (on_edge < tolerance)]
-        gap = np.min(np.linalg.norm(on_either - junction["corner"], axis=1))
-        tangent = min(np.linalg.norm(junction[key] - junction["corner"])
-                      for key in ("on_rim", "on_edge"))
-        checks(f"the rim and the edge have no outline vertex at the sharp "
-               f"lens's corner ({junction['corner'][0]:.4f}, "
-               f"{junction['corner'][1]:.4f}): the nearest is {gap:.3g} mm "
-               f"away, the nearer tangent point {tangent:.3g} mm",
-               gap > tangent - tolerance)
+        # none of their outline vertices lies from the corner to either.
+        inside = (on_rim < tolerance) & between(
+            near, np.zeros(2), junction["corner"], junction["on_rim"])
+        inside |= (on_edge < tolerance) & between(
+            near, junction["edge_centre"], junction["corner"],
+            junction["on_edge"])
+        checks(f"the rim and the edge have no outline vertex from the "
+               f"sharp lens's corner ({junction['corner'][0]:.4f}, "
+               f"{junction['corner'][1]:.4f}) to the fillet's tangent "
+               f"points (found {int(inside.sum())})", not inside.any())
     checks(f"each of the {len(near)} outline vertices within "
            f"{optic_radius + 2 * fillet + 0.3:g} mm of the lens centre lies "
            "on the rim, a haptic edge or a fillet", bool(on_something.all()))
