@@ -171,6 +171,15 @@ coshell_bad_input_test(iol_two_obstacles_one_force_file
 coshell_bad_input_test(iol_stage_duration_unknown_constant
   "Stage 2/Duration: cannot evaluate 'push_tim - rod_out_time'"
   ${injection} --set "Stage 2/Duration=push_tim - rod_out_time")
+# A junction fillet too large for the lens: lens.geo refuses it, naming
+# the fillet and the edge it does not fit (the C-loop's inner edge, and
+# the modified-L's leg, which a 2 mm fillet would run past into the knee).
+coshell_bad_input_test(iol_junction_fillet_too_large
+  "gmsh could not mesh .*lens.geo': Error.*no junction fillet of radius 2 fits the C-loop's edge .radius 3.6. at the optic rim"
+  ${injection} --set "Mesh/Gmsh parameters=junction_fillet = 2")
+coshell_bad_input_test(iol_junction_fillet_past_the_knee
+  "gmsh could not mesh .*lens.geo': Error.*a junction fillet of radius 2 reaches past the modified-L leg into its knee"
+  ${injection} --set "Mesh/Gmsh parameters=junction_fillet = 2, haptic_type = 1")
 coshell_bad_input_test(iol_plunger_standing_still
   "Constants/Values: plunger_speed = 0 must be > 0"
   ${injection} --set "Constants/Values=plunger_speed = 0, ${injection_constants}")
