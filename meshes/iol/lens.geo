@@ -30,9 +30,10 @@
 // grows as the mesh is refined). junction_fillet > 0 rounds each corner by
 // an arc of that radius, tangent to the rim and to the haptic's edge. The
 // fillet is haptic material. Its boundary with the optic leaves the rim
-// along the radius at the fillet's tangent point and runs straight to the
-// old corner: were it the rim itself, it would meet the fillet arc
-// tangentially and leave triangles with a vanishing angle there.
+// along the radius at each fillet's tangent point, junction_fillet deep,
+// and runs straight across between the two: were it the rim itself, it
+// would meet the fillet arc tangentially and leave triangles with a
+// vanishing angle there. So the haptic's root takes a foot of the optic.
 //
 // Physical groups: surface 1 optic, surface 2 haptics. With
 // haptics_only = 1 the file instead holds one haptic without the optic,
