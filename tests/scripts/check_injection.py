@@ -76,8 +76,11 @@ def parse_arguments():
     parser.add_argument("--figures", help="directory for the PNG files")
     parser.add_argument("--junction-fillet", type=float, metavar="RADIUS",
                         help="the lens's haptic-optic junctions are "
-                             "filleted (lens.geo junction_fillet, mm, "
-                             "C-loop): check the rest mesh's outline")
+                             "filleted (lens.geo junction_fillet, mm): "
+                             "check the rest mesh's outline")
+    parser.add_argument("--haptic-type", type=int, choices=(0, 1),
+                        default=0, help="the lens's haptics for "
+                        "--junction-fillet: 0 C-loop, 1 modified-L")
     parser.add_argument("--fold-only", type=float, metavar="WIDTH",
                         help="the run is the fold stage alone: check the "
                              "gaps, the energy and that the optic's width "
@@ -402,7 +405,7 @@ def check_junction_fillets(checks, args):
     points, merged = np.unique(np.round(mesh.points, 6), axis=0,
                                return_inverse=True)
     check_fillets(checks, points, merged.reshape(-1)[triangles],
-                  args.junction_fillet)
+                  args.junction_fillet, args.haptic_type)
 
 
 def check_strain_fields(checks, history, frame):
