@@ -235,11 +235,11 @@ Macro HapticRoot
   l = newl; Circle(l) = {fpt[0], fpf[0], fpe[0]}; rootline[] += l;
   first = (far == 0) ? fpe[0] : cut; last = (far == 0) ? cut : fpe[1];
   If (far == 1)
-    Call EdgeFromTo0;
+    edge_from = fpe[0]; edge_to = cut; Call NearEdge;
   EndIf
   l = newl; Line(l) = {first, last}; rootline[] += l;
   If (far == 0)
-    Call EdgeFromTo1;
+    edge_from = cut; edge_to = fpe[1]; Call NearEdge;
   EndIf
   l = newl; Circle(l) = {fpe[1], fpf[1], fpt[1]}; rootline[] += l;
   l = newl; Line(l) = {fpt[1], fpm[1]}; rootline[] += l;
@@ -249,23 +249,14 @@ Macro HapticRoot
   root = news; Plane Surface(root) = {loop};
 Return
 
-// The near side's edge between its fillet and the cut: side 0 from its
-// tangent point to the cut, or side 1 from the cut to its tangent point.
-Macro EdgeFromTo0
+// The near side's edge between its fillet and the cut, from edge_from to
+// edge_to (side 0: its tangent point to the cut; side 1: the reverse).
+Macro NearEdge
   l = newl;
   If (haptic_type == 0)
-    ph = newp; Point(ph) = {rho, 0, 0}; Circle(l) = {fpe[0], ph, cut};
+    ph = newp; Point(ph) = {rho, 0, 0}; Circle(l) = {edge_from, ph, edge_to};
   Else
-    Line(l) = {fpe[0], cut};
-  EndIf
-  rootline[] += l;
-Return
-Macro EdgeFromTo1
-  l = newl;
-  If (haptic_type == 0)
-    ph = newp; Point(ph) = {rho, 0, 0}; Circle(l) = {cut, ph, fpe[1]};
-  Else
-    Line(l) = {cut, fpe[1]};
+    Line(l) = {edge_from, edge_to};
   EndIf
   rootline[] += l;
 Return

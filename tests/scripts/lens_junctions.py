@@ -13,7 +13,7 @@ degrees about the z axis. The first haptic leaves the optic at y < 0:
     n = (-d_y, d_x), where the leg is tangent to a knee of centre-line
     radius knee_radius turning by knee_angle into an arm of radius
     arm_radius about (overall / 2 - width / 2 - arm_radius, 0) that
-    starts at arm_start degrees (README, "The lens").
+    starts at arm_start degrees (README: the IOL scenes, the lens).
 """
 import math
 
