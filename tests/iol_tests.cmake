@@ -180,6 +180,15 @@ coshell_bad_input_test(iol_junction_fillet_too_large
 coshell_bad_input_test(iol_junction_fillet_past_the_knee
   "gmsh could not mesh .*lens.geo': Error.*a junction fillet of radius 2 reaches past the modified-L leg into its knee"
   ${injection} --set "Mesh/Gmsh parameters=junction_fillet = 2, haptic_type = 1")
+# Refinement at the junctions: a negative size, and the single haptic of
+# the compression test, which has no junction to refine.
+coshell_bad_input_test(iol_junction_mesh_size_negative
+  "gmsh could not mesh .*lens.geo': Error.*junction_mesh_size = -0.1 mm must be >= 0"
+  ${injection} --set "Mesh/Gmsh parameters=junction_mesh_size = -0.1")
+coshell_bad_input_test(iol_junction_mesh_size_without_junctions
+  "gmsh could not mesh .*lens.geo': Error.*junction_mesh_size refines the haptic-optic junctions, which haptics_only = 1 leaves out"
+  ${COSHELL_PRM}/iol/haptic_compression.prm
+  --set "Mesh/Gmsh parameters=haptics_only = 1, junction_mesh_size = 0.05")
 coshell_bad_input_test(iol_plunger_standing_still
   "Constants/Values: plunger_speed = 0 must be > 0"
   ${injection} --set "Constants/Values=plunger_speed = 0, ${injection_constants}")
@@ -255,6 +264,21 @@ coshell_iol_test(iol.injection.fold.modified_l.junction_fillet
                  --set "Stage 2/Analysis type=none"
                  --set "Stage 3/Analysis type=none"
                  --junction-fillet 0.25 --haptic-type 1 --fold-only 3.7)
+# The filleted coarse lens refined at its junctions (lens.geo
+# junction_mesh_size = 0.175 mm, half the coarse haptic's size, within
+# junction_mesh_radius = 0.15 mm of each fillet: 636 triangles against
+# 428): the triangles there have that size (median of their longest
+# edges at most 1.2 times it, 95th percentile at most 1.5 times; the
+# unrefined lens fails both at every junction, 1.25 to 1.43 and 1.57 to
+# 1.91 times, its fillets' own points refining it some), the outline
+# still follows the fillets, and the fold's checks pass.
+coshell_iol_test(iol.injection.fold.junction_refined check_injection.py
+                 injection.prm
+                 --set "${coarse_lens}, junction_fillet = 0.25, junction_mesh_size = 0.175, junction_mesh_radius = 0.15"
+                 --set "Stage 2/Analysis type=none"
+                 --set "Stage 3/Analysis type=none"
+                 --junction-fillet 0.25 --junction-refined 0.175 0.15
+                 --fold-only 3.7)
 # Co-rotational against linear kinematics on the same fold, to t = 0.6 s
 # (wings 54 degrees closed): the optic's line rim-centre-rim stays within
 # 3 % of its 6 mm with co-rotation (folding by bending; measured 1.9 %)

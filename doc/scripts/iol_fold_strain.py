@@ -14,10 +14,16 @@ Runs the meshes two at a time (--jobs) and writes
 doc/performance/iol_fold_strain.csv and .png, stamped with machine and
 commit. With --fillet F the lenses' haptic-optic junctions are rounded
 (lens.geo's junction_fillet = F mm), and the files are
-iol_fold_strain_fillet.csv and .png.
+iol_fold_strain_fillet.csv and .png. With --junction-sizes the lens is
+refined near its four junctions only: the default lens halved (0.275 and
+0.11 mm) with lens.geo's junction_mesh_size set to each size given (mm)
+within --junction-radius of each fillet (or corner), and the files are
+iol_fold_strain_junction[_fillet].csv and .png; the first row is the lens
+without local refinement.
 
   /usr/bin/python3 doc/scripts/iol_fold_strain.py --coshell build/coshell \\
-      [--meshes 4] [--jobs 2] [--fillet 0.25]
+      [--meshes 4] [--jobs 2] [--fillet 0.25] \\
+      [--junction-sizes 0.055,0.0275,0.01375 --junction-radius 0.15]
 """
 import argparse
 import concurrent.futures
@@ -43,11 +49,19 @@ OUT = os.path.join(ROOT, "doc", "performance")
 OPTIC, HAPTICS = 1, 2  # material ids of lens.geo
 
 
-def fold(sizes, coshell, work, fillet):
-    """Runs the fold on one lens mesh; returns its output directory."""
+# The lens refined near its junctions only: the default lens halved.
+JUNCTION_BASE = (0.275, 0.11)
+
+
+def fold(case, coshell, work):
+    """Runs the fold on one lens mesh, a case (sizes, lens.geo constants,
+    tag); returns its output directory and wall time."""
+    sizes, constants, tag = case
     command, output = lens_command(
-        sizes, coshell, work, ["Stage 2/Analysis type=none"],
-        f"junction_fillet = {fillet}" if fillet > 0 else "")
+        sizes, coshell, work, ["Stage 2/Analysis type=none"], constants,
+        tag)
+    if os.path.exists(os.path.join(output, "summary.json")):
+        return output, None  # finished in an earlier call (--keep)
     start = time.time()
     subprocess.run(command, check=True, stdout=subprocess.DEVNULL,
                    env=dict(os.environ, OPENBLAS_NUM_THREADS="1"))
@@ -66,17 +80,38 @@ def regions(mesh, rim):
                   "haptics": material == HAPTICS}
 
 
-def folded_strains(sizes, output, seconds, rim):
+def cases(args):
+    """The lens meshes to fold: (gmsh sizes, lens.geo constants, tag)."""
+    fillet = f"junction_fillet = {args.fillet}" if args.fillet > 0 else ""
+    if not args.junction_sizes:
+        return [(sizes, fillet, "") for sizes in MESHES[:args.meshes]]
+    local = [(JUNCTION_BASE, fillet, "")]
+    for size in args.junction_sizes.split(","):
+        constants = (f"junction_mesh_size = {size}, junction_mesh_radius = "
+                     f"{args.junction_radius}")
+        local.append((JUNCTION_BASE,
+                      f"{fillet}, {constants}" if fillet else constants,
+                      f"_junction_{size}"))
+    return local
+
+
+def folded_strains(case, output, seconds, rim):
     """The largest strains per region of the last VTU."""
+    sizes, constants, _ = case
+    junction = [c.split("=")[1] for c in constants.split(",")
+                if "junction_mesh_size" in c]
     with open(os.path.join(output, "summary.json")) as f:
         summary = json.load(f)
     last = render_vtu.read_pvd(os.path.join(output, "solution.pvd"))[-1]
     mesh = render_vtu.read_vtu(last.shell_file)
     rest, masks = regions(mesh, rim)
     row = {"optic_mesh_size_mm": sizes[0], "haptic_mesh_size_mm": sizes[1],
+           "junction_mesh_size_mm": float(junction[0]) if junction else "",
            "triangles": summary["n_cells"], "time_s": last.time,
            "newton_iterations": summary["newton_iterations"],
-           "wall_s": round(seconds, 1)}
+           "wall_s": round(seconds, 1) if seconds is not None else "",
+           "time_loop_s": round(summary["simulated_time_s"]
+                                / summary["real_time_factor"], 1)}
     for kind in ("surface", "bending", "membrane"):
         cells = render_vtu.cell_field(mesh, kind + "_strain")
         for region, mask in masks.items():
@@ -89,22 +124,32 @@ def folded_strains(sizes, output, seconds, rim):
     return row
 
 
-def plot(rows, commit, name, fillet):
+def plot(rows, commit, name, fillet, local):
+    """Strains against the lens's triangles, or, refined at the junctions
+    only, against the size of the triangles there (finer to the right;
+    the unrefined lens at its haptic's size)."""
     figure, axes = plt.subplots(figsize=(6.5, 4))
-    triangles = [r["triangles"] for r in rows]
+    if local:
+        x = [r["junction_mesh_size_mm"] or r["haptic_mesh_size_mm"]
+             for r in rows]
+        axes.invert_xaxis()
+    else:
+        x = [r["triangles"] for r in rows]
     for region, marker in (("optic", "o-"), ("optic_rim", "^:"),
                            ("haptics", "s--")):
         for kind in ("surface", "bending"):  # the CSV has the membrane's
-            axes.plot(triangles,
-                      [100 * r[f"{region}_{kind}_strain"] for r in rows],
+            axes.plot(x, [100 * r[f"{region}_{kind}_strain"] for r in rows],
                       marker, label=f"{region.replace('_', ' ')}, {kind}")
     axes.set_xscale("log")
     axes.set_ylim(0, 45)  # the legend above the curves
-    finish_plot(figure, axes, "lens triangles",
+    shape = f"junctions filleted {fillet:g} mm" if fillet > 0 else \
+        "sharp junctions"
+    finish_plot(figure, axes,
+                "triangles' size at the junctions (mm)" if local
+                else "lens triangles",
                 "largest strain at the fold's end (%)",
-                "IOL fold, strains against the mesh"
-                + (f", junctions filleted {fillet:g} mm" if fillet > 0 else "")
-                + f" ({commit})",
+                f"IOL fold, {shape}" + (", refined there" if local else "")
+                + f"\n({commit})",
                 os.path.join(OUT, name + ".png"))
 
 
@@ -118,22 +163,31 @@ def main():
     parser.add_argument("--fillet", type=float, default=0.0,
                         help="radius (mm) of the haptic-optic junctions' "
                         "fillet (default 0: sharp, the scene's lens)")
+    parser.add_argument("--junction-sizes",
+                        help="comma-separated sizes (mm) of the triangles "
+                        "near the junctions, on the default lens halved")
+    parser.add_argument("--junction-radius", type=float, default=0.15,
+                        help="mm from each junction's fillet (or corner) "
+                        "within which --junction-sizes hold")
     parser.add_argument("--keep", help="a directory for the runs' output "
-                        "(default: a temporary one, removed)")
+                        "(default: a temporary one, removed); a run that "
+                        "finished there before is read, not run again, "
+                        "and its wall time is left blank")
     args = parser.parse_args()
     coshell = os.path.abspath(args.coshell)
     machine, commit = machine_and_commit()
-    meshes = MESHES[:args.meshes]
+    meshes = cases(args)
     with tempfile.TemporaryDirectory() as scratch, \
             concurrent.futures.ThreadPoolExecutor(args.jobs) as pool:
         work = os.path.abspath(args.keep) if args.keep else scratch
-        runs = list(pool.map(
-            lambda sizes: fold(sizes, coshell, work, args.fillet), meshes))
-        rows = [folded_strains(sizes, output, seconds, args.rim)
-                for sizes, (output, seconds) in zip(meshes, runs)]
+        runs = list(pool.map(lambda case: fold(case, coshell, work), meshes))
+        rows = [folded_strains(case, output, seconds, args.rim)
+                for case, (output, seconds) in zip(meshes, runs)]
     for row in rows:
         print(row)
-    name = "iol_fold_strain" + ("_fillet" if args.fillet > 0 else "")
+    local = bool(args.junction_sizes)
+    name = ("iol_fold_strain" + ("_junction" if local else "")
+            + ("_fillet" if args.fillet > 0 else ""))
     write_csv(os.path.join(OUT, name + ".csv"), rows,
               [f"machine: {machine}; commit {commit}",
                "prm/iol/injection.prm, stage 1 (the fold) only, one thread "
@@ -141,8 +195,11 @@ def main():
                f"last VTU; optic: rest radius < {args.rim:g} mm, optic_rim: "
                "the rest of the optic"
                + (f"; junctions filleted, radius {args.fillet:g} mm"
-                  if args.fillet > 0 else "")])
-    plot(rows, commit, name, args.fillet)
+                  if args.fillet > 0 else "")
+               + (f"; refined to junction_mesh_size within "
+                  f"{args.junction_radius:g} mm of each junction"
+                  if local else "")])
+    plot(rows, commit, name, args.fillet, local)
 
 
 if __name__ == "__main__":

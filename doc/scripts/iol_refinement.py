@@ -54,12 +54,14 @@ def plunger_forces(output):
     return displacement, push, work
 
 
-def lens_command(sizes, coshell, work, assignments, lens_constants=""):
+def lens_command(sizes, coshell, work, assignments, lens_constants="",
+                 tag=""):
     """The scene on the lens of these gmsh sizes, on one thread, with
     more assignments and more lens.geo constants ("name = value, ...");
-    returns the command and its output directory."""
+    returns the command and its output directory (named by the sizes and
+    the tag)."""
     optic, haptic = sizes
-    output = os.path.join(work, f"lens_{optic}_{haptic}")
+    output = os.path.join(work, f"lens_{optic}_{haptic}{tag}")
     command = [coshell, SCENE, "--output", output]
     constants = f"optic_mesh_size = {optic}, haptic_mesh_size = {haptic}"
     if lens_constants:

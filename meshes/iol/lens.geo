@@ -35,6 +35,11 @@
 // would meet the fillet arc tangentially and leave triangles with a
 // vanishing angle there. So the haptic's root takes a foot of the optic.
 //
+// Junction refinement: junction_mesh_size > 0 (mm at level 0) meshes the
+// lens with triangles of that size within junction_mesh_radius of each
+// junction's fillet (of each corner when sharp), growing beyond, so that
+// the strain there can be converged without refining the whole lens.
+//
 // Physical groups: surface 1 optic, surface 2 haptics. With
 // haptics_only = 1 the file instead holds one haptic without the optic,
 // cut square at its root (physical curve 1) and at its tip (curve 2): the
@@ -56,13 +61,22 @@ DefineConstant[
   knee_angle = 90,         // degrees, modified-L: turn of the knee
   arm_radius = 4.5,        // mm, modified-L: radius of the arm's centre line
   arm_start = -70,         // degrees, modified-L: the arm's start about its centre
-  junction_fillet = 0      // mm, radius of a fillet where each haptic edge meets the optic rim (0: a sharp corner)
+  junction_fillet = 0,     // mm, radius of a fillet where each haptic edge meets the optic rim (0: a sharp corner)
+  junction_mesh_size = 0,  // mm at level 0, triangles near each junction (0: no local refinement)
+  junction_mesh_radius = 0.15 // mm, how far from each junction's fillet (or corner) junction_mesh_size holds
 ];
 
 scale = 2^(-refinement_level);
 tip_angle = tip_sweep * Pi / 180;
 If (haptic_type != 0 && haptic_type != 1)
   Error("lens.geo: haptic_type = %g; it must be 0 (C-loop) or 1 (modified-L)", haptic_type);
+EndIf
+// Checked before any geometry is built: gmsh goes on after an Error.
+If (junction_mesh_size < 0 || junction_mesh_radius <= 0)
+  Error("lens.geo: junction_mesh_size = %g mm must be >= 0 and junction_mesh_radius = %g mm > 0", junction_mesh_size, junction_mesh_radius);
+EndIf
+If (junction_mesh_size > 0 && haptics_only)
+  Error("lens.geo: junction_mesh_size refines the haptic-optic junctions, which haptics_only = 1 leaves out");
 EndIf
 If (haptic_type == 0)
 // Arc centre (rho, 0): the haptic's outer edge reaches overall_diameter / 2.
@@ -171,7 +185,6 @@ Macro JunctionFillet
       Error("lens.geo: no junction fillet of radius %g fits the C-loop's edge (radius %g) at the optic rim", f, re);
     EndIf
     py[k] = -Sqrt((R + f)^2 - px[k]^2);
-    cx[k] = (R^2 - re^2 + rho^2) / (2 * rho); cy[k] = -Sqrt(R^2 - cx[k]^2);
     ex[k] = rho + (px[k] - rho) * re / dh; ey[k] = py[k] * re / dh;
   Else
     // The edge is the leg's side line k0 + s d + sg h n, n = (-dy, dx),
@@ -188,12 +201,49 @@ Macro JunctionFillet
     EndIf
     px[k] = qx + s * dx; py[k] = qy + s * dy;
     ex[k] = px[k] + sg * f * dy; ey[k] = py[k] - sg * f * dx;
+  EndIf
+  tx[k] = px[k] * R / (R + f); ty[k] = py[k] * R / (R + f);
+  Call JunctionCorner;
+Return
+
+// The corner (cx[k], cy[k]) where the first haptic's edge on side k
+// (as in JunctionFillet) meets the optic rim, filleted or not.
+Macro JunctionCorner
+  R = optic_radius; side = 2 * k - 1;
+  If (haptic_type == 0)
+    re = haptic_radius + side * haptic_width / 2;
+    cx[k] = (R^2 - re^2 + rho^2) / (2 * rho); cy[k] = -Sqrt(R^2 - cx[k]^2);
+  Else
+    sg = -side;
     qx = k0x - sg * h * dy; qy = k0y + sg * h * dx;
     qd = qx * dx + qy * dy;
     s = -qd + Sqrt(qd^2 - qx^2 - qy^2 + R^2);
     cx[k] = qx + s * dx; cy[k] = qy + s * dy;
   EndIf
-  tx[k] = px[k] * R / (R + f); ty[k] = py[k] * R / (R + f);
+Return
+
+// Local refinement at the four haptic-optic junctions, where the fold's
+// strain peaks: triangles of junction_mesh_size within
+// junction_mesh_radius of each junction's fillet (of the corner itself
+// when junction_fillet = 0; the second haptic's are the first's turned by
+// 180 degrees), growing as fast as the distance beyond, so that a
+// refinement study can resolve the junction without refining the whole
+// lens. The sizes set on the points still hold where they are smaller.
+Macro JunctionRefinement
+  For k In {0:1}
+    Call JunctionFillet;
+  EndFor
+  // Distance to the nearest fillet's disk (centre (px, py), radius f).
+  to_fillets = "min(min(Sqrt((x-(%.10g))^2+(y-(%.10g))^2), Sqrt((x+(%.10g))^2+(y+(%.10g))^2)), min(Sqrt((x-(%.10g))^2+(y-(%.10g))^2), Sqrt((x+(%.10g))^2+(y+(%.10g))^2))) - %.10g";
+  Field[1] = MathEval;
+  Field[1].F = Sprintf(to_fillets, px[0], py[0], px[0], py[0], px[1], py[1], px[1], py[1], junction_fillet);
+  Field[2] = Threshold;
+  Field[2].InField = 1;
+  Field[2].SizeMin = junction_mesh_size * scale;
+  Field[2].SizeMax = optic_mesh_size * scale;
+  Field[2].DistMin = junction_mesh_radius;
+  Field[2].DistMax = junction_mesh_radius + (optic_mesh_size - junction_mesh_size) * scale;
+  Background Field = 2;
 Return
 
 // The first haptic's root with both fillets, one face: the two fillets,
@@ -311,6 +361,9 @@ Else
   Physical Surface("haptics", 2) -= {inner()};
   MeshSize{PointsOf{Surface{pieces()};}} = haptic_mesh_size * scale;
   MeshSize{PointsOf{Surface{inner()};}} = optic_mesh_size * scale;
+EndIf
+If (junction_mesh_size > 0 && !haptics_only)
+  Call JunctionRefinement;
 EndIf
 Mesh.MeshSizeExtendFromBoundary = 1;
 Mesh.Algorithm = 6;

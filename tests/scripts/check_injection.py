@@ -23,6 +23,9 @@ through --set) and checks what the scene must show:
 
 With --junction-fillet RADIUS the rest lens's outline at the haptic-optic
 junctions is checked against fillets of that radius (lens_junctions.py).
+With --junction-refined SIZE RADIUS the rest lens's triangles within
+RADIUS mm of each junction's fillet (or corner) are checked to have the
+size SIZE mm (lens.geo junction_mesh_size and junction_mesh_radius).
 
 With --fold-only WIDTH the run is the fold stage alone: the gaps, the
 energy and the optic's width at the end (<= WIDTH) are checked and the
@@ -52,7 +55,7 @@ SCRIPTS = os.path.dirname(os.path.abspath(__file__))
 RENDER = os.path.join(SCRIPTS, "..", "..", "doc", "scripts", "render_vtu.py")
 sys.path.insert(0, os.path.dirname(RENDER))
 import render_vtu  # noqa: E402
-from lens_junctions import check_fillets  # noqa: E402
+from lens_junctions import check_fillets, check_refinement  # noqa: E402
 
 
 def parse_arguments():
@@ -78,9 +81,15 @@ def parse_arguments():
                         help="the lens's haptic-optic junctions are "
                              "filleted (lens.geo junction_fillet, mm): "
                              "check the rest mesh's outline")
+    parser.add_argument("--junction-refined", type=float, nargs=2,
+                        metavar=("SIZE", "RADIUS"),
+                        help="the lens is refined at its junctions "
+                             "(lens.geo junction_mesh_size and "
+                             "junction_mesh_radius, mm): check the sizes")
     parser.add_argument("--haptic-type", type=int, choices=(0, 1),
                         default=0, help="the lens's haptics for "
-                        "--junction-fillet: 0 C-loop, 1 modified-L")
+                        "--junction-fillet and --junction-refined: 0 "
+                        "C-loop, 1 modified-L")
     parser.add_argument("--fold-only", type=float, metavar="WIDTH",
                         help="the run is the fold stage alone: check the "
                              "gaps, the energy and that the optic's width "
@@ -394,18 +403,24 @@ def check_fold(checks, history, args):
             title + ", largest principal strain at either surface"]))
 
 
-def check_junction_fillets(checks, args):
-    """The rest lens's outline at the haptic-optic junctions, from the
-    first VTU (deal.II writes each cell's own copies of its vertices:
-    merged here by position)."""
+def check_junctions(checks, args):
+    """The rest lens at the haptic-optic junctions, from the first VTU
+    (deal.II writes each cell's own copies of its vertices: merged here
+    by position): the fillets' outline and the local refinement."""
     first = render_vtu.read_pvd(os.path.join(args.output, "solution.pvd"))[0]
     mesh = render_vtu.read_vtu(first.shell_file)
     triangles = np.array([mesh.cell_vertices[start:start + 3] for start in
                           mesh.cell_starts[mesh.cell_sizes == 3]])
     points, merged = np.unique(np.round(mesh.points, 6), axis=0,
                                return_inverse=True)
-    check_fillets(checks, points, merged.reshape(-1)[triangles],
-                  args.junction_fillet, args.haptic_type)
+    cells = merged.reshape(-1)[triangles]
+    if args.junction_fillet:
+        check_fillets(checks, points, cells, args.junction_fillet,
+                      args.haptic_type)
+    if args.junction_refined:
+        size, radius = args.junction_refined
+        check_refinement(checks, points, cells, args.junction_fillet or 0.0,
+                         size, radius, args.haptic_type)
 
 
 def check_strain_fields(checks, history, frame):
@@ -433,8 +448,8 @@ def main():
     checks, forces, history = run_contact_scene(
         args, "lens against the wings, rod, cartridge, plunger, bag and "
         "itself")
-    if args.junction_fillet:
-        check_junction_fillets(checks, args)
+    if args.junction_fillet or args.junction_refined:
+        check_junctions(checks, args)
     if args.fold_only is not None:
         check_fold(checks, history, args)
         check_energy(checks, history, forces, args)

@@ -195,3 +195,36 @@ def check_fillets(checks, points, cells, fillet, haptic_type=0,
     checks(f"each of the {len(near)} outline vertices within "
            f"{optic_radius + 2 * fillet + 0.3:g} mm of the lens centre lies "
            "on the rim, a haptic edge or a fillet", bool(on_something.all()))
+
+
+def check_refinement(checks, points, cells, fillet, size, radius,
+                     haptic_type=0, optic_radius=3.0):
+    """Checks a lens refined at its junctions (lens.geo junction_mesh_size
+    = size within radius mm of each fillet's disk, or of each corner when
+    fillet = 0), on the triangles whose centroid lies that near: the
+    median of their longest edges is at most 1.2 size and 95 % of them
+    are shorter than 1.5 size (gmsh's at 0.95 to 1.05 and 1.2 to 1.36
+    there on the halved lens; the largest, at the zone's border, up to
+    1.9), and there are at least as many as a fifth of the disk's ring
+    holds at that size. No lower bound: a short fillet's outline points
+    make smaller triangles (0.79 size at the median on the coarse lens's
+    outer fillets at size 0.12)."""
+    xy = np.asarray(points)[:, :2]
+    corners = xy[np.asarray(cells)]
+    centroids = corners.mean(axis=1)
+    longest = np.max(np.linalg.norm(
+        corners - np.roll(corners, 1, axis=1), axis=2), axis=1)
+    ring = math.pi * ((fillet + radius)**2 - fillet**2)
+    least = int(0.2 * ring / (math.sqrt(3) / 4 * size**2))
+    for junction in junctions(fillet, haptic_type, optic_radius):
+        near = (np.linalg.norm(centroids - junction["centre"], axis=1)
+                - fillet) < radius
+        median, upper = (np.percentile(longest[near], (50, 95)) / size
+                         if near.any() else (0.0, 0.0))
+        checks(f"the {int(near.sum())} triangles within {radius:g} mm of "
+               f"the junction at ({junction['centre'][0]:.4f}, "
+               f"{junction['centre'][1]:.4f}) (at least {least}): longest "
+               f"edges {median:.2f} junction_mesh_size at the median "
+               f"(at most 1.2), {upper:.2f} at the 95th percentile "
+               "(at most 1.5)",
+               near.sum() >= least and median <= 1.2 and upper <= 1.5)
