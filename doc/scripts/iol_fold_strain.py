@@ -135,13 +135,17 @@ def plot(rows, commit, name, fillet, local):
         axes.invert_xaxis()
     else:
         x = [r["triangles"] for r in rows]
+    largest = 0.0
     for region, marker in (("optic", "o-"), ("optic_rim", "^:"),
                            ("haptics", "s--")):
         for kind in ("surface", "bending"):  # the CSV has the membrane's
-            axes.plot(x, [100 * r[f"{region}_{kind}_strain"] for r in rows],
-                      marker, label=f"{region.replace('_', ' ')}, {kind}")
+            values = [100 * r[f"{region}_{kind}_strain"] for r in rows]
+            largest = max(largest, *values)
+            axes.plot(x, values, marker,
+                      label=f"{region.replace('_', ' ')}, {kind}")
     axes.set_xscale("log")
-    axes.set_ylim(0, 45)  # the legend above the curves
+    # Room for the legend above the curves, and a sharp corner's peaks.
+    axes.set_ylim(0, max(45, 1.1 * largest))
     shape = f"junctions filleted {fillet:g} mm" if fillet > 0 else \
         "sharp junctions"
     finish_plot(figure, axes,
