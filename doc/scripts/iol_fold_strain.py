@@ -19,7 +19,8 @@ refined near its four junctions only: the default lens halved (0.275 and
 0.11 mm) with lens.geo's junction_mesh_size set to each size given (mm)
 within --junction-radius of each fillet (or corner), and the files are
 iol_fold_strain_junction[_fillet].csv and .png; the first row is the lens
-without local refinement.
+without local refinement. --haptic-type 1 folds the modified-L lens
+instead (files ending _modified_l).
 
   /usr/bin/python3 doc/scripts/iol_fold_strain.py --coshell build/coshell \\
       [--meshes 4] [--jobs 2] [--fillet 0.25] \\
@@ -80,19 +81,36 @@ def regions(mesh, rim):
                   "haptics": material == HAPTICS}
 
 
+def base_constants(args):
+    """lens.geo constants every case shares: the haptics and the fillet."""
+    constants = []
+    if args.haptic_type == 1:
+        constants.append("haptic_type = 1")
+    if args.fillet > 0:
+        constants.append(f"junction_fillet = {args.fillet}")
+    return constants
+
+
 def cases(args):
     """The lens meshes to fold: (gmsh sizes, lens.geo constants, tag)."""
-    fillet = f"junction_fillet = {args.fillet}" if args.fillet > 0 else ""
+    base = base_constants(args)
     if not args.junction_sizes:
-        return [(sizes, fillet, "") for sizes in MESHES[:args.meshes]]
-    local = [(JUNCTION_BASE, fillet, "")]
+        return [(sizes, ", ".join(base), "") for sizes in
+                MESHES[:args.meshes]]
+    local = [(JUNCTION_BASE, ", ".join(base), "")]
     for size in args.junction_sizes.split(","):
-        constants = (f"junction_mesh_size = {size}, junction_mesh_radius = "
-                     f"{args.junction_radius}")
-        local.append((JUNCTION_BASE,
-                      f"{fillet}, {constants}" if fillet else constants,
-                      f"_junction_{size}"))
+        refined = base + [f"junction_mesh_size = {size}",
+                          f"junction_mesh_radius = {args.junction_radius}"]
+        local.append((JUNCTION_BASE, ", ".join(refined), f"_junction_{size}"))
     return local
+
+
+def describe(args):
+    """The lens in words, for the plot's title."""
+    haptics = "modified-L, " if args.haptic_type == 1 else ""
+    if args.fillet > 0:
+        return f"{haptics}junctions filleted {args.fillet:g} mm"
+    return f"{haptics}sharp junctions"
 
 
 def folded_strains(case, output, seconds, rim):
@@ -124,7 +142,7 @@ def folded_strains(case, output, seconds, rim):
     return row
 
 
-def plot(rows, commit, name, fillet, local):
+def plot(rows, commit, name, shape, local):
     """Strains against the lens's triangles, or, refined at the junctions
     only, against the size of the triangles there (finer to the right;
     the unrefined lens at its haptic's size)."""
@@ -146,8 +164,6 @@ def plot(rows, commit, name, fillet, local):
     axes.set_xscale("log")
     # Room for the legend above the curves, and a sharp corner's peaks.
     axes.set_ylim(0, max(45, 1.1 * largest))
-    shape = f"junctions filleted {fillet:g} mm" if fillet > 0 else \
-        "sharp junctions"
     finish_plot(figure, axes,
                 "triangles' size at the junctions (mm)" if local
                 else "lens triangles",
@@ -167,6 +183,9 @@ def main():
     parser.add_argument("--fillet", type=float, default=0.0,
                         help="radius (mm) of the haptic-optic junctions' "
                         "fillet (default 0: sharp, the scene's lens)")
+    parser.add_argument("--haptic-type", type=int, choices=(0, 1),
+                        default=0, help="0: C-loop (the scene's), 1: "
+                        "modified-L (lens.geo haptic_type)")
     parser.add_argument("--junction-sizes",
                         help="comma-separated sizes (mm) of the triangles "
                         "near the junctions, on the default lens halved")
@@ -191,19 +210,21 @@ def main():
         print(row)
     local = bool(args.junction_sizes)
     name = ("iol_fold_strain" + ("_junction" if local else "")
-            + ("_fillet" if args.fillet > 0 else ""))
+            + ("_fillet" if args.fillet > 0 else "")
+            + ("_modified_l" if args.haptic_type == 1 else ""))
     write_csv(os.path.join(OUT, name + ".csv"), rows,
               [f"machine: {machine}; commit {commit}",
                "prm/iol/injection.prm, stage 1 (the fold) only, one thread "
                f"per run, {args.jobs} runs at a time; strains from the "
                f"last VTU; optic: rest radius < {args.rim:g} mm, optic_rim: "
                "the rest of the optic"
+               + ("; modified-L haptics" if args.haptic_type == 1 else "")
                + (f"; junctions filleted, radius {args.fillet:g} mm"
                   if args.fillet > 0 else "")
                + (f"; refined to junction_mesh_size within "
                   f"{args.junction_radius:g} mm of each junction"
                   if local else "")])
-    plot(rows, commit, name, args.fillet, local)
+    plot(rows, commit, name, describe(args), local)
 
 
 if __name__ == "__main__":

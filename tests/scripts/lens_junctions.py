@@ -203,7 +203,7 @@ def check_refinement(checks, points, cells, fillet, size, radius,
     = size within radius mm of each fillet's disk, or of each corner when
     fillet = 0), on the triangles whose centroid lies that near: the
     median of their longest edges is at most 1.2 size and 95 % of them
-    are shorter than 1.5 size (gmsh's at 0.95 to 1.05 and 1.2 to 1.36
+    are shorter than 1.5 size (gmsh's at 0.95 to 1.05 and 1.16 to 1.36
     there on the halved lens; the largest, at the zone's border, up to
     1.9), and there are at least as many as a fifth of the disk's ring
     holds at that size. No lower bound: a short fillet's outline points
