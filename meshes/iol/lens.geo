@@ -172,7 +172,7 @@ Return
 // or k = 1. Sets the fillet's centre (px[k], py[k]), at junction_fillet
 // from the edge and optic_radius + junction_fillet from the lens centre;
 // its tangent points on the rim (tx[k], ty[k]) and on the edge (ex[k],
-// ey[k]); the corner (cx[k], cy[k]) where edge and rim meet.
+// ey[k]). With junction_fillet = 0 the centre is the sharp corner.
 Macro JunctionFillet
   f = junction_fillet; R = optic_radius; side = 2 * k - 1;
   If (haptic_type == 0)
@@ -203,23 +203,6 @@ Macro JunctionFillet
     ex[k] = px[k] + sg * f * dy; ey[k] = py[k] - sg * f * dx;
   EndIf
   tx[k] = px[k] * R / (R + f); ty[k] = py[k] * R / (R + f);
-  Call JunctionCorner;
-Return
-
-// The corner (cx[k], cy[k]) where the first haptic's edge on side k
-// (as in JunctionFillet) meets the optic rim, filleted or not.
-Macro JunctionCorner
-  R = optic_radius; side = 2 * k - 1;
-  If (haptic_type == 0)
-    re = haptic_radius + side * haptic_width / 2;
-    cx[k] = (R^2 - re^2 + rho^2) / (2 * rho); cy[k] = -Sqrt(R^2 - cx[k]^2);
-  Else
-    sg = -side;
-    qx = k0x - sg * h * dy; qy = k0y + sg * h * dx;
-    qd = qx * dx + qy * dy;
-    s = -qd + Sqrt(qd^2 - qx^2 - qy^2 + R^2);
-    cx[k] = qx + s * dx; cy[k] = qy + s * dy;
-  EndIf
 Return
 
 // Local refinement at the four haptic-optic junctions, where the fold's
