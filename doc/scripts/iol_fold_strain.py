@@ -56,8 +56,8 @@ JUNCTION_BASE = (0.275, 0.11)
 
 def fold(case, coshell, work):
     """Runs the fold on one lens mesh, a case (sizes, lens.geo constants,
-    tag); returns its output directory and wall time."""
-    sizes, constants, tag = case
+    tag, junction size); returns its output directory and wall time."""
+    sizes, constants, tag, _ = case
     command, output = lens_command(
         sizes, coshell, work, ["Stage 2/Analysis type=none"], constants,
         tag)
@@ -92,16 +92,18 @@ def base_constants(args):
 
 
 def cases(args):
-    """The lens meshes to fold: (gmsh sizes, lens.geo constants, tag)."""
+    """The lens meshes to fold: (gmsh sizes, lens.geo constants, tag,
+    junction_mesh_size in mm or "" when not refined there)."""
     base = base_constants(args)
     if not args.junction_sizes:
-        return [(sizes, ", ".join(base), "") for sizes in
+        return [(sizes, ", ".join(base), "", "") for sizes in
                 MESHES[:args.meshes]]
-    local = [(JUNCTION_BASE, ", ".join(base), "")]
+    local = [(JUNCTION_BASE, ", ".join(base), "", "")]
     for size in args.junction_sizes.split(","):
         refined = base + [f"junction_mesh_size = {size}",
                           f"junction_mesh_radius = {args.junction_radius}"]
-        local.append((JUNCTION_BASE, ", ".join(refined), f"_junction_{size}"))
+        local.append((JUNCTION_BASE, ", ".join(refined), f"_junction_{size}",
+                      float(size)))
     return local
 
 
@@ -115,16 +117,14 @@ def describe(args):
 
 def folded_strains(case, output, seconds, rim):
     """The largest strains per region of the last VTU."""
-    sizes, constants, _ = case
-    junction = [c.split("=")[1] for c in constants.split(",")
-                if "junction_mesh_size" in c]
+    sizes, _, _, junction_size = case
     with open(os.path.join(output, "summary.json")) as f:
         summary = json.load(f)
     last = render_vtu.read_pvd(os.path.join(output, "solution.pvd"))[-1]
     mesh = render_vtu.read_vtu(last.shell_file)
     rest, masks = regions(mesh, rim)
     row = {"optic_mesh_size_mm": sizes[0], "haptic_mesh_size_mm": sizes[1],
-           "junction_mesh_size_mm": float(junction[0]) if junction else "",
+           "junction_mesh_size_mm": junction_size,
            "triangles": summary["n_cells"], "time_s": last.time,
            "newton_iterations": summary["newton_iterations"],
            "wall_s": round(seconds, 1) if seconds is not None else "",
