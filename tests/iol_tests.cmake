@@ -180,11 +180,15 @@ coshell_bad_input_test(iol_junction_fillet_too_large
 coshell_bad_input_test(iol_junction_fillet_past_the_knee
   "gmsh could not mesh .*lens.geo': Error.*a junction fillet of radius 2 reaches past the modified-L leg into its knee"
   ${injection} --set "Mesh/Gmsh parameters=junction_fillet = 2, haptic_type = 1")
-# Refinement at the junctions: a negative size, and the single haptic of
-# the compression test, which has no junction to refine.
+# Refinement at the junctions: a negative size, a size no finer than the
+# optic's (the grading would run backwards), and the single haptic of the
+# compression test, which has no junction to refine.
 coshell_bad_input_test(iol_junction_mesh_size_negative
   "gmsh could not mesh .*lens.geo': Error.*junction_mesh_size = -0.1 mm must be >= 0"
   ${injection} --set "Mesh/Gmsh parameters=junction_mesh_size = -0.1")
+coshell_bad_input_test(iol_junction_mesh_size_not_finer
+  "gmsh could not mesh .*lens.geo': Error.*junction_mesh_size = 0.6 mm must be below optic_mesh_size = 0.55 mm"
+  ${injection} --set "Mesh/Gmsh parameters=junction_mesh_size = 0.6")
 coshell_bad_input_test(iol_junction_mesh_size_without_junctions
   "gmsh could not mesh .*lens.geo': Error.*junction_mesh_size refines the haptic-optic junctions, which haptics_only = 1 leaves out"
   ${COSHELL_PRM}/iol/haptic_compression.prm

@@ -75,6 +75,9 @@ EndIf
 If (junction_mesh_size < 0 || junction_mesh_radius <= 0)
   Error("lens.geo: junction_mesh_size = %g mm must be >= 0 and junction_mesh_radius = %g mm > 0", junction_mesh_size, junction_mesh_radius);
 EndIf
+If (junction_mesh_size >= optic_mesh_size)
+  Error("lens.geo: junction_mesh_size = %g mm must be below optic_mesh_size = %g mm: it refines the junctions", junction_mesh_size, optic_mesh_size);
+EndIf
 If (junction_mesh_size > 0 && haptics_only)
   Error("lens.geo: junction_mesh_size refines the haptic-optic junctions, which haptics_only = 1 leaves out");
 EndIf
