@@ -743,6 +743,7 @@ namespace coshell::driver
       result.newton_corrections += record.correction_norm != 0;
     };
     const double solver_before   = linear_solver_.seconds();
+    const double factors_before  = linear_solver_.factorization_seconds();
     const double assembly_before = problem.assembly_seconds();
     const double reached =
         advance_dynamic_stage(problem, run.from, run.end(), out.step, on_step,
@@ -751,6 +752,8 @@ namespace coshell::driver
     result.dynamic_wall_time_s += seconds_since(wall);
     result.dynamic_assembly_s += problem.assembly_seconds() - assembly_before;
     result.dynamic_linear_solver_s += linear_solver_.seconds() - solver_before;
+    result.dynamic_factorization_s +=
+        linear_solver_.factorization_seconds() - factors_before;
   }
 
   void Scene::begin_dynamic_stage(DynamicStageRun &run)
@@ -1184,6 +1187,7 @@ namespace coshell::driver
     };
     const auto   wall            = std::chrono::steady_clock::now();
     const double solver_before   = linear_solver_.seconds();
+    const double factors_before  = linear_solver_.factorization_seconds();
     const double assembly_before = problem.assembly_seconds();
     path_following_.run(problem, linear_solver_,
                         stages_.staged() ? std::vector<double>()
@@ -1192,6 +1196,8 @@ namespace coshell::driver
     result.static_wall_time_s += seconds_since(wall);
     result.static_assembly_s += problem.assembly_seconds() - assembly_before;
     result.static_linear_solver_s += linear_solver_.seconds() - solver_before;
+    result.static_factorization_s +=
+        linear_solver_.factorization_seconds() - factors_before;
   }
 
   io::LevelResult Scene::run_stages(const model::ShellModel &model,

@@ -278,6 +278,7 @@ namespace coshell::solvers
   LinearSolver::factorize_directly(const SparseMatrix<double>  &matrix,
                                    const std::function<void()> &complete_matrix)
   {
+    const Stopwatch timer(factorization_seconds_);
     ++factorizations_;
     factors_worn_out_ = false;
     if (backend_->using_cholmod)
@@ -354,6 +355,7 @@ namespace coshell::solvers
 
   void LinearSolver::set_up_trilinos_solver()
   {
+    const Stopwatch timer(factorization_seconds_);
     if (is_amesos())
     {
       backend_->trilinos_direct =

@@ -371,3 +371,26 @@ TEST(LinearSolverLowerTriangle, OnlyCholmodWithoutKeptFactorsReadsIt)
   lower.zero();
   EXPECT_THROW(umfpack.factorize(lower, true), std::logic_error);
 }
+
+// summary.json splits the linear solver's time into factorization and
+// the rest: the part must lie within the whole, and a solve with kept
+// factors must add nothing to it.
+TEST(LinearSolverTiming, FactorizationIsAPartOfTheSolversTime)
+{
+  Tridiagonal  system(2000);
+  LinearSolver solver;
+  configure(solver, true);
+  double first_factorization = -1;
+  solve_two_matrices(
+      solver,
+      [&](unsigned int k) -> auto & {
+        if (k == 1)
+          first_factorization = solver.factorization_seconds();
+        return system.set(0.1 + 0.002 * k);
+      },
+      smooth_load(2000), false);
+  expect_counts(solver, 1, 1, 0);
+  EXPECT_GT(first_factorization, 0.0);
+  EXPECT_EQ(solver.factorization_seconds(), first_factorization);
+  EXPECT_LT(solver.factorization_seconds(), solver.seconds());
+}

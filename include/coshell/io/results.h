@@ -46,12 +46,15 @@ namespace coshell::io
     /// Steps the energy guard rejected in this run (Time integration/
     /// Energy growth limit); written only when the guard is on.
     std::optional<unsigned int> energy_guard_rejections;
-    /// Of that wall time: residual/tangent assembly and linear solver.
-    double dynamic_assembly_s = 0, dynamic_linear_solver_s = 0;
+    /// Of that wall time: residual/tangent assembly and linear solver,
+    /// and of the linear solver the factorizations.
+    double dynamic_assembly_s = 0, dynamic_linear_solver_s = 0,
+           dynamic_factorization_s = 0;
     /// Static stages of a nonlinear analysis: the wall time of the load
-    /// path (s), and of it the assembly and the linear solver.
+    /// path (s), and of it the assembly, the linear solver and of that the
+    /// factorizations.
     double static_wall_time_s = 0, static_assembly_s = 0,
-           static_linear_solver_s = 0;
+           static_linear_solver_s = 0, static_factorization_s = 0;
     std::map<std::string, double> qoi, reference;
     /// Contact: smallest gap and largest penetration over the run (length),
     /// barrier stiffness, and the seconds spent in detection, pair terms

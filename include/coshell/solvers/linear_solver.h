@@ -111,6 +111,15 @@ namespace coshell::solvers
     unsigned int last_iterations() const;
     /// Wall-clock seconds spent in factorize() and solve() so far.
     double seconds() const;
+    /// Of seconds(): those spent factorizing (a direct method's copy of
+    /// the matrix and its symbolic and numeric factorization, or the AMG
+    /// preconditioner's set-up), whether in factorize() or in a solve()
+    /// that had to factorize after all. The rest is forward and back
+    /// substitution and Krylov iterations.
+    double factorization_seconds() const
+    {
+      return factorization_seconds_;
+    }
     /// Factorizations that CHOLMOD refused (not positive definite) and
     /// UMFPACK did instead.
     unsigned int cholmod_fallbacks() const
@@ -134,6 +143,7 @@ namespace coshell::solvers
     unsigned int max_iterations_             = 10000;
     unsigned int last_iterations_            = 0;
     double       seconds_                    = 0;
+    double       factorization_seconds_      = 0;
     unsigned int cholmod_fallbacks_          = 0;
     bool         rigid_body_near_null_space_ = true;
     std::string  amg_smoother_               = "Chebyshev";
