@@ -150,19 +150,19 @@ coshell_iol_test(iol.tuck check_tuck.py tuck.prm
 # tube's axis): the lens starts inside its wall; a nozzle narrower than
 # twice the lens's haptic thickness is refused by injector.geo, which gets
 # the constant haptic_thickness that Material/Thickness uses (here 0.9 mm
-# haptics against a 1.7 mm nozzle, which would pass 0.45 mm ones); a
+# haptics, changed by Constants/Changes as a user would on the command
+# line, against a 1.7 mm nozzle, which would pass 0.45 mm ones); a
 # plunger speed of 0 or below is refused (Constants/Positive) where it is
 # defined, before push_time divides by it; a stage whose duration names
 # no constant is refused naming the stage; two obstacles writing one Force
 # file are refused naming both.
 set(injection ${COSHELL_PRM}/iol/injection.prm)
-set(injection_constants "plunger_start = -6.9, nozzle_tip = 15, haptic_thickness = 0.45, fold_time = 1.0, rod_out_time = 1.3, push_time = rod_out_time + (nozzle_tip - plunger_start) / plunger_speed, axis_height = 1.5, bag_x = 17.2")
 coshell_bad_input_test(iol_lens_inside_cartridge_wall
   "the shell starts inside obstacle 'cartridge' .Contact/Obstacle 1."
   ${injection} --set "Contact/Obstacle 1/Translation=-8$<SEMICOLON> 0$<SEMICOLON> axis_height")
 coshell_bad_input_test(iol_nozzle_narrower_than_two_haptics
   "Contact/Obstacle 1 .'cartridge'.: gmsh could not mesh .*injector.geo': Error.*nozzle's inner diameter 2 . nozzle_radius = 1.7 mm is not wider than twice the haptic thickness .haptic_thickness = 0.9 mm"
-  ${injection} --set "Constants/Values=plunger_speed = 5, plunger_start = -6.9, nozzle_tip = 15, haptic_thickness = 0.9, fold_time = 1.0, rod_out_time = 1.3, push_time = rod_out_time + (nozzle_tip - plunger_start) / plunger_speed, axis_height = 1.5, bag_x = 17.2"
+  ${injection} --set "Constants/Changes=haptic_thickness = 0.9"
   --set "Contact/Obstacle 1/Gmsh parameters=nozzle_tip = nozzle_tip, nozzle_radius = 0.85, haptic_thickness = haptic_thickness")
 coshell_bad_input_test(iol_two_obstacles_one_force_file
   "Contact/Obstacle 6/Force file: 'plunger_force.csv' is Contact/Obstacle 2's Force file too"
@@ -194,11 +194,16 @@ coshell_bad_input_test(iol_junction_mesh_size_without_junctions
   ${COSHELL_PRM}/iol/haptic_compression.prm
   --set "Mesh/Gmsh parameters=haptics_only = 1, junction_mesh_size = 0.05")
 coshell_bad_input_test(iol_plunger_standing_still
-  "Constants/Values: plunger_speed = 0 must be > 0"
-  ${injection} --set "Constants/Values=plunger_speed = 0, ${injection_constants}")
+  "Constants/Changes: plunger_speed = 0 must be > 0"
+  ${injection} --set "Constants/Changes=plunger_speed = 0")
 coshell_bad_input_test(iol_plunger_backwards
-  "Constants/Values: plunger_speed = -2 must be > 0"
-  ${injection} --set "Constants/Values=plunger_speed = -2, ${injection_constants}")
+  "Constants/Changes: plunger_speed = -2 must be > 0"
+  ${injection} --set "Constants/Changes=plunger_speed = -2")
+# A change on the command line to a constant the scene does not have (a
+# typo) is refused, not added unused.
+coshell_bad_input_test(iol_unknown_constant_changed
+  "Constants/Changes: 'plunger_sped' is not a constant of Constants/Values"
+  ${injection} --set "Constants/Changes=plunger_sped = 1.5")
 
 # The injection (prm/iol/injection.prm) on the coarse lens (203
 # triangles: optic_mesh_size 0.9, haptic_mesh_size 0.35 mm), with the
@@ -316,7 +321,7 @@ coshell_iol_test(iol.injection check_injection.py injection.prm
 # decentration 0.83 mm, tilt 18.7 degrees, energy remainder 0.25 %; 62 s).
 coshell_iol_test(iol.injection.slow_plunger check_injection.py injection.prm
                  --set ${coarse_lens}
-                 --set "Constants/Values=plunger_speed = 1.5, ${injection_constants}")
+                 --set "Constants/Changes=plunger_speed = 1.5")
 set_tests_properties(iol.injection.slow_plunger PROPERTIES LABELS "iol;long")
 # The same without friction (the scene's default until 2026-11-25; 3 min
 # on 2 threads on 2026-11-25: 989 steps, 7893 iterations; 5.5 min before

@@ -76,17 +76,53 @@ namespace coshell::io
       return named;
     }
 
+    /// A constant's text and the entry it came from, for messages.
+    struct Definition
+    {
+      std::string name, expression, where;
+    };
+
+    /// The entries of Values, each of those named in 'changes' given the
+    /// changed text in its place: the constants after it that derive from
+    /// it follow the change. Throws naming a change of no constant of
+    /// Values, or one changed twice.
+    std::vector<Definition> apply_changes(const std::string &values,
+                                          const std::string &changes)
+    {
+      std::vector<Definition> definitions;
+      for (auto &[name, expression] :
+           split_named_entries(values, "Constants/Values"))
+        definitions.push_back({name, expression, "Constants/Values"});
+      const std::string        where = "Constants/Changes";
+      std::vector<std::string> changed;
+      for (auto &[name, expression] : split_named_entries(changes, where))
+      {
+        const auto definition =
+            std::find_if(definitions.begin(), definitions.end(),
+                         [&](const Definition &d) { return d.name == name; });
+        if (definition == definitions.end())
+          throw std::invalid_argument(where + ": '" + name +
+                                      "' is not a constant of "
+                                      "Constants/Values");
+        if (std::find(changed.begin(), changed.end(), name) != changed.end())
+          throw std::invalid_argument(where + ": " + name +
+                                      " is changed twice");
+        changed.push_back(name);
+        *definition = {name, expression, where};
+      }
+      return definitions;
+    }
+
     /// The scene's constants with pi, each value a number or an expression
     /// of those before it; a constant listed in 'positive' must be > 0 where
     /// it is defined, so that the message names it rather than a later
     /// constant divided by it. Throws naming the entry.
     std::map<std::string, double>
-    parse_values(const std::string              &text,
+    parse_values(const std::vector<Definition>  &definitions,
                  const std::vector<std::string> &positive)
     {
-      const std::string             where = "Constants/Values";
       std::map<std::string, double> values{{"pi", numbers::PI}};
-      for (const auto &[name, expression] : split_named_entries(text, where))
+      for (const auto &[name, expression, where] : definitions)
       {
         const double value = evaluate_constant_expression(expression, values,
                                                           where + ": " + name);
@@ -171,6 +207,14 @@ namespace coshell::io
                       "(e.g. 'push_time = rod_out_time + 21.9 / "
                       "plunger_speed'), so that derived times follow the "
                       "design values they come from.");
+    prm.declare_entry(
+        "Changes", "", Patterns::Anything(),
+        "'name = value' entries, as in Values, that replace the values of "
+        "constants of Values where they stand, so that the constants "
+        "derived from them follow (in the same units as in Values). Meant "
+        "for the command line: --set \"Constants/Changes=plunger_speed = "
+        "1.5\" changes one design value without restating the others. A "
+        "name that is not a constant of Values is refused.");
     prm.declare_entry("Positive", "", Patterns::Anything(),
                       "Names of constants (separated by ',') that must be "
                       "> 0: a scene that needs a forward speed or a "
@@ -181,10 +225,11 @@ namespace coshell::io
   void Constants::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Constants");
-    const std::string values_text = prm.get("Values");
+    const auto definitions =
+        apply_changes(prm.get("Values"), prm.get("Changes"));
     const auto positive = Utilities::split_string_list(prm.get("Positive"));
     prm.leave_subsection();
-    scene_constants() = parse_values(values_text, positive);
+    scene_constants() = parse_values(definitions, positive);
   }
 
   const std::map<std::string, double> &expression_constants()

@@ -13,25 +13,29 @@ namespace
 {
   using coshell::io::Constants;
 
-  /// Parses 'values' (and 'positive') as a prm's Constants subsection.
+  /// Parses 'values' (and 'positive', 'changes') as a prm's Constants
+  /// subsection.
   void parse_constants(const std::string &values,
-                       const std::string &positive = "")
+                       const std::string &positive = "",
+                       const std::string &changes  = "")
   {
     dealii::ParameterHandler prm;
     Constants::declare_parameters(prm);
     prm.enter_subsection("Constants");
     prm.set("Values", values);
     prm.set("Positive", positive);
+    prm.set("Changes", changes);
     prm.leave_subsection();
     Constants::parse_parameters(prm);
   }
 
   std::string message_of(const std::string &values,
-                         const std::string &positive = "")
+                         const std::string &positive = "",
+                         const std::string &changes  = "")
   {
     try
     {
-      parse_constants(values, positive);
+      parse_constants(values, positive, changes);
     }
     catch (const std::invalid_argument &error)
     {
@@ -112,5 +116,32 @@ TEST(Constants, ThreeValuesMayBeConstantExpressions)
             std::string::npos);
   EXPECT_NE(message("-hinge, 0, 0")
                 .find("Obstacle 3/Rotation centre: cannot evaluate '-hinge'"),
+            std::string::npos);
+}
+
+// A change on the command line replaces one design value where it stands:
+// what is derived from it after follows, what comes before does not.
+TEST(Constants, ChangesReplaceValuesWhereTheyStand)
+{
+  const std::string values =
+      "out = 1.3, speed = 5, push = out + 21.9 / speed, before = 2";
+  parse_constants(values, "speed", "speed = 1.5, before = out * 2");
+  const auto &constants = coshell::io::expression_constants();
+  EXPECT_DOUBLE_EQ(constants.at("speed"), 1.5);
+  EXPECT_DOUBLE_EQ(constants.at("push"), 1.3 + 21.9 / 1.5);
+  EXPECT_DOUBLE_EQ(constants.at("before"), 2.6);
+  EXPECT_EQ(message_of(values, "speed", "speed = 0"),
+            "Constants/Changes: speed = 0 must be > 0 (it is listed in "
+            "Constants/Positive)");
+  EXPECT_EQ(message_of(values, "", "sped = 1.5"),
+            "Constants/Changes: 'sped' is not a constant of "
+            "Constants/Values");
+  EXPECT_EQ(message_of(values, "", "speed = 1, speed = 2"),
+            "Constants/Changes: speed is changed twice");
+  EXPECT_EQ(message_of(values, "", "speed"),
+            "Constants/Changes: 'speed' is not of the form 'name = value'");
+  // A changed value may use only the constants before its place.
+  EXPECT_NE(message_of(values, "", "out = push")
+                .find("Constants/Changes: out: cannot evaluate 'push'"),
             std::string::npos);
 }

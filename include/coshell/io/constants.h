@@ -18,10 +18,11 @@ namespace coshell::io
   {
   public:
     static void declare_parameters(dealii::ParameterHandler &prm);
-    /// Parses the constants and makes them those of every expression
-    /// parsed afterwards. Throws std::invalid_argument naming the entry
-    /// and the constant: a malformed entry, an unknown name in "Positive",
-    /// a value that must be positive and is not.
+    /// Parses the constants, with "Changes" applied to "Values", and makes
+    /// them those of every expression parsed afterwards. Throws
+    /// std::invalid_argument naming the entry and the constant: a
+    /// malformed entry, an unknown name in "Positive" or "Changes", a
+    /// constant changed twice, a value that must be positive and is not.
     static void parse_parameters(dealii::ParameterHandler &prm);
   };
 
