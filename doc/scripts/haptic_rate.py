@@ -18,7 +18,8 @@ travelled as far as in the scene's mode and its largest membrane strain
 stayed below twice that mode's: a lens that blew up, or a plunger held
 back while the scene stood still, is reported as such, not as a rate.
 The linearized penalty runs at --step and, since it breaks the lens
-there, at 0.5 ms too. The penalty modes restart from a fold made with the penalty (the scene's
+there, at 0.5 ms too; at 0.5 ms also with the history thinned, and with
+the seed paper's tangent R K R^T instead of the scene's symmetric one. The penalty modes restart from a fold made with the penalty (the scene's
 mode otherwise): the barrier's fold holds the lens's layers apart at the
 barrier's gaps, and a penalty, which acts only on penetration, drops
 them at once. Writes
@@ -85,6 +86,15 @@ MODES = [
     ("linearized Euler, penalty, step filter 0.5, dt 0.5 ms, history "
      "every 20th step", "linearized implicit euler", PENALTY,
      FLOOR + ["Output/Steps between history rows=20"], 0.0005),
+    # The same with the seed paper's tangent R K R^T (the element's
+    # constant local stiffness turned by its frame, no geometric terms), as
+    # its SOFA implementation stepped: half the element's cost per cell
+    # (doc/performance.md, "Element kernels"). The residual is the same;
+    # the step's matrix lacks the terms linear in the element forces.
+    ("linearized Euler, penalty, step filter 0.5, dt 0.5 ms, history "
+     "every 20th step, the paper's tangent", "linearized implicit euler",
+     PENALTY, FLOOR + ["Output/Steps between history rows=20",
+                       "Nonlinear solver/Tangent=paper"], 0.0005),
 ]
 PLUNGER = "2"  # its obstacle number in the scene and in contact_forces.csv
 
@@ -151,6 +161,8 @@ def measure(binary, checkpoints, mode, push, step, work):
             1e3 * summary["contact"]["detection_s"] / steps, 2),
         "linear_solver_ms_per_step": round(
             1e3 * seconds["linear_solver"] / steps, 2),
+        "factorization_ms_per_step": round(
+            1e3 * seconds["factorization"] / steps, 2),
         "other_ms_per_step": round(1e3 * seconds["other"] / steps, 2),
         "smallest_gap_mm": summary["contact"]["smallest_gap"],
         "max_bending_strain": round(bending, 4),
@@ -172,15 +184,29 @@ def judge(rows):
             row["status"] = "lens destroyed"
 
 
+def breakdown(rows):
+    """The issue's split of a step, ms per step: contact detection, the
+    rest of the assembly, factorization, substitution, and the rest."""
+    def ms(name):
+        return [r[f"{name}_ms_per_step"] for r in rows]
+    return {
+        "contact detection": ms("contact_detection"),
+        "assembly without detection": [
+            a - d for a, d in zip(ms("assembly"), ms("contact_detection"))],
+        "factorization": ms("factorization"),
+        "substitution": [s - f for s, f in zip(ms("linear_solver"),
+                                                ms("factorization"))],
+        "other": ms("other")}
+
+
 def plot(rows, commit):
     # Broken modes stay in the plot, labelled: their rate is no answer.
     rows = [r for r in rows if "steps_per_second" in r]
     figure, axes = plt.subplots(figsize=(9.5, 4.5))
     labels = [r["mode"].replace(", ", ",\n") for r in rows]
     bottom = [0.0] * len(rows)
-    for part in ("assembly", "linear_solver", "other"):
-        values = [r[f"{part}_ms_per_step"] for r in rows]
-        axes.bar(labels, values, bottom=bottom, label=part.replace("_", " "))
+    for part, values in breakdown(rows).items():
+        axes.bar(labels, values, bottom=bottom, label=part)
         bottom = [b + v for b, v in zip(bottom, values)]
     axes.axhline(2.0, color="k", ls="--", lw=1, label="500 steps/s")
     for x, r in enumerate(rows):
