@@ -14,8 +14,15 @@ by --timeout leaves the finer rows out; a failed run is a row with the
 error message, after which the finer meshes are not run) and
 iol_refinement.png, stamped with machine and commit.
 
+With --whole the runs are the whole scene instead: the fold, the push
+until the plunger reaches the nozzle's tip (where the folded optic
+passes the nozzle and the force peaks) and the deployment in the bag;
+the rows add the optic's decentration, tilt and shape deviation at rest
+(the Region poses' quantities at the end). Files iol_refinement_whole.csv
+and .png.
+
   /usr/bin/python3 doc/scripts/iol_refinement.py --coshell build/coshell \\
-      [--meshes 5] [--push 1.0] [--timeout 5400]
+      [--meshes 5] [--push 1.0 | --whole] [--timeout 5400]
 """
 import argparse
 import json
@@ -55,28 +62,31 @@ def plunger_forces(output):
 
 
 def lens_command(sizes, coshell, work, assignments, lens_constants="",
-                 tag=""):
+                 tag="", deploy=False):
     """The scene on the lens of these gmsh sizes, on one thread, with
-    more assignments and more lens.geo constants ("name = value, ...");
-    returns the command and its output directory (named by the sizes and
-    the tag)."""
+    more assignments and more lens.geo constants ("name = value, ..."),
+    without the deployment (stage 3) unless 'deploy'; returns the command
+    and its output directory (named by the sizes and the tag)."""
     optic, haptic = sizes
     output = os.path.join(work, f"lens_{optic}_{haptic}{tag}")
     command = [coshell, SCENE, "--output", output]
     constants = f"optic_mesh_size = {optic}, haptic_mesh_size = {haptic}"
     if lens_constants:
         constants += ", " + lens_constants
-    for assignment in [
-            f"Mesh/Gmsh parameters={constants}",
-            "Stage 3/Analysis type=none", "Parallel/Threads=1"] + assignments:
+    stages = [] if deploy else ["Stage 3/Analysis type=none"]
+    for assignment in [f"Mesh/Gmsh parameters={constants}"] + stages + [
+            "Parallel/Threads=1"] + assignments:
         command += ["--set", assignment]
     return command, output
 
 
 def run(sizes, coshell, push, timeout, work):
+    """One mesh's row; push None: the whole scene."""
     optic, haptic = sizes
-    command, output = lens_command(sizes, coshell, work,
-                                   [f"Stage 2/Duration={push}"])
+    command, output = lens_command(
+        sizes, coshell, work,
+        [] if push is None else [f"Stage 2/Duration={push}"],
+        deploy=push is None)
     start = time.time()
     process = subprocess.run(command, stdout=subprocess.DEVNULL,
                              stderr=subprocess.PIPE, text=True,
@@ -92,6 +102,10 @@ def run(sizes, coshell, push, timeout, work):
     averaged, work = travel_measures(displacement, forces, work_so_far)
     bending, membrane = largest_strains(output)
     seconds = summary["time_stepping_s"]
+    at_rest = {} if push is not None else {
+        f"{name}_{unit}": round(summary["qoi"][f"optic_{name}"], 4)
+        for name, unit in (("decentration", "mm"), ("tilt", "degrees"),
+                           ("shape_deviation", "mm"))}
     return {
         "optic_mesh_size_mm": optic, "haptic_mesh_size_mm": haptic,
         "triangles": summary["n_cells"], "dofs": summary["n_dofs"],
@@ -109,10 +123,10 @@ def run(sizes, coshell, push, timeout, work):
         "push_work_nmm": round(work, 5),
         "final_plunger_force_mn": round(1e3 * forces[-1], 3),
         "smallest_gap_mm": summary["contact"]["smallest_gap"],
-        "status": "ok"}
+        **at_rest, "status": "ok"}
 
 
-def plot(rows, push, commit):
+def plot(rows, push, commit, name):
     figure, axes = plt.subplots(1, 3, figsize=(11, 3.6))
     rows = [r for r in rows if r["status"] == "ok"]
     triangles = [r["triangles"] for r in rows]
@@ -120,7 +134,9 @@ def plot(rows, push, commit):
         (axes[0], [("max_plunger_force_mn", "largest"),
                    ("max_plunger_force_over_0.5mm_mn",
                     "largest over 0.5 mm of travel"),
-                   ("final_plunger_force_mn", f"at t = {1.3 + push:g} s")],
+                   ("final_plunger_force_mn",
+                    "at the end" if push is None
+                    else f"at t = {1.3 + push:g} s")],
          "plunger force (mN)"),
         (axes[1], [("max_bending_strain", "bending"),
                    ("max_membrane_strain", "membrane")],
@@ -136,9 +152,11 @@ def plot(rows, push, commit):
         ax.grid(True, which="both", alpha=0.3)
         ax.legend(fontsize=7)
     axes[2].set_yscale("log")
+    run = ("IOL injection, the whole scene" if push is None
+           else f"IOL fold and {push:g} s of push")
     finish_plot(figure, axes[1], "lens triangles", "largest strain",
-                f"IOL fold and {push:g} s of push, refinement "
-                f"({commit})", os.path.join(OUT, "iol_refinement.png"))
+                f"{run}, refinement ({commit})",
+                os.path.join(OUT, name + ".png"))
 
 
 def main():
@@ -147,14 +165,20 @@ def main():
     parser.add_argument("--meshes", type=int, default=len(MESHES))
     parser.add_argument("--push", type=float, default=1.0,
                         help="seconds of stage 2 (the plunger at 5 mm/s)")
+    parser.add_argument("--whole", action="store_true",
+                        help="the whole scene (fold, push, deployment)")
     parser.add_argument("--timeout", type=float, default=5400,
                         help="seconds per mesh; finer meshes are skipped "
                         "after one runs out")
     args = parser.parse_args()
     machine, commit = machine_and_commit()
+    push = None if args.whole else args.push
+    name = "iol_refinement_whole" if args.whole else "iol_refinement"
+    stages = ("the whole scene (fold, push to the nozzle's tip, deployment)"
+              if args.whole else f"stage 1 (fold, 1.3 s) and {args.push:g} "
+              "s of stage 2 (push)")
     header = [f"machine: {machine}; commit {commit}",
-              f"prm/iol/injection.prm: stage 1 (fold, 1.3 s) and "
-              f"{args.push:g} s of stage 2 (push), Parallel/Threads = 1, "
+              f"prm/iol/injection.prm: {stages}, Parallel/Threads = 1, "
               "OPENBLAS_NUM_THREADS = 1; meshes one after another"]
     rows = []
     os.makedirs(OUT, exist_ok=True)
@@ -162,16 +186,16 @@ def main():
         for sizes in MESHES[:args.meshes]:
             try:
                 rows.append(run(sizes, os.path.abspath(args.coshell),
-                                args.push, args.timeout, work))
+                                push, args.timeout, work))
             except subprocess.TimeoutExpired:
                 print(f"lens {sizes}: no result within {args.timeout} s")
                 break
             print(rows[-1], flush=True)
-            write_csv(os.path.join(OUT, "iol_refinement.csv"), rows, header,
+            write_csv(os.path.join(OUT, name + ".csv"), rows, header,
                       list(dict.fromkeys(k for r in rows for k in r)))
             if rows[-1]["status"] != "ok":
                 break  # a finer lens would take longer to fail as well
-    plot(rows, args.push, commit)
+    plot(rows, push, commit, name)
 
 
 if __name__ == "__main__":
