@@ -14,7 +14,8 @@ through --set) and checks what the scene must show:
     fraction of its peak), the optic's largest deviation from its rest
     shape after the best rigid fit is below 2 % of the optic diameter, and
     every lens vertex lies inside the bag;
-  - the plunger force is finite and positive;
+  - the plunger force is finite and positive (a pull, friction's, of at
+    most 1 % of its peak);
   - energy: the work the plunger, the wings and the rod did on the lens,
     plus the external work, equals the strain energy + kinetic energy +
     the energy dissipated by drag, damping and friction + the barrier
@@ -157,8 +158,15 @@ def check_plunger_force(checks, forces, args, output):
     averaged, work = travel_measures(displacement, push, work_so_far)
     print(f"plunger: largest force over 0.5 mm of travel "
           f"{1e3 * averaged:.4g} mN, work of the push {work:.5g} N mm")
-    checks("the plunger force is finite and positive",
-           bool(np.all(np.isfinite(push))) and largest > 0)
+    # Positive: the plunger pushes. Its friction may pull the lens back a
+    # little where the lens runs ahead of it (-0.03 mN against a 44 mN
+    # peak on the coarse lens), so a pull is allowed up to 1 % of the peak.
+    smallest = push.min() if len(push) else math.nan
+    print(f"plunger: smallest force {1e3 * smallest:.4g} mN")
+    checks("the plunger force is finite and positive (a pull of at most "
+           "1 % of its peak)",
+           bool(np.all(np.isfinite(push))) and largest > 0
+           and smallest >= -0.01 * largest)
     return time, displacement, push
 
 
