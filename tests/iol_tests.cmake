@@ -313,6 +313,17 @@ coshell_iol_test(iol.fold.corotational_vs_linear check_fold_kinematics.py
 coshell_iol_test(iol.injection check_injection.py injection.prm
                  --set ${coarse_lens}
                  --figures ${CMAKE_CURRENT_BINARY_DIR}/output/iol.injection/png)
+# The whole injection of the modified-L lens (coarse): every check of
+# iol.injection but the optic's shape at rest, which is reported and not
+# asserted. The design misses 2 %: held at 10 mm its arms bend the optic
+# by about 2 % wherever they are held (1.72 % between the ISO clamps,
+# 2.27 % in the bag; doc/validation.md, "The modified-L lens in the
+# cartridge"). Measured 2026-11-29: 880 steps, smallest gap 1.1e-5 mm,
+# optic 2.63 mm across in the nozzle, plunger force at most 43.6 mN,
+# energy remainder 0.24 %; 75 s.
+coshell_iol_test(iol.injection.modified_l check_injection.py injection.prm
+                 --set ${coarse_modified_l}
+                 --shape-not-asserted "the modified-L design bends its optic by about 2 % wherever it is held at 10 mm (1.72 % between the ISO clamps)")
 # The whole injection at the slow end of real injectors, 1.5 mm/s (the
 # scene's 5 mm/s is the fast end): Constants/Values derives push_time and
 # the push stage's duration from plunger_speed, so the plunger makes the

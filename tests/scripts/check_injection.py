@@ -76,6 +76,12 @@ def parse_arguments():
     parser.add_argument("--optic-diameter", type=float, default=6.0)
     parser.add_argument("--shape-tolerance", type=float, default=0.02,
                         help="largest optic deviation / optic diameter")
+    parser.add_argument("--shape-not-asserted", metavar="REASON",
+                        help="report the optic's shape at rest against "
+                        "--shape-tolerance without asserting it, saying "
+                        "why: for a lens whose design misses it (the "
+                        "modified-L bends its optic by about 2 %% wherever "
+                        "it is held at 10 mm, doc/validation.md)")
     parser.add_argument("--energy-tolerance", type=float, default=0.02)
     parser.add_argument("--figures", help="directory for the PNG files")
     parser.add_argument("--junction-fillet", type=float, metavar="RADIUS",
@@ -246,9 +252,14 @@ def check_deployment(checks, history, args, output):
           f"{deviation:.4g} mm ({100 * deviation / args.optic_diameter:.3g} % "
           f"of its diameter), whole lens {whole:.4g} mm (haptics held by "
           "the bag)")
-    checks("the optic recovers its shape: deviation below "
-           f"{100 * args.shape_tolerance:g} % of its diameter",
-           deviation < args.shape_tolerance * args.optic_diameter)
+    recovered = deviation < args.shape_tolerance * args.optic_diameter
+    shape = ("the optic recovers its shape: deviation below "
+             f"{100 * args.shape_tolerance:g} % of its diameter")
+    if args.shape_not_asserted:
+        print(f"not asserted: {shape} ({'yes' if recovered else 'no'}): "
+              f"{args.shape_not_asserted}")
+    else:
+        checks(shape, recovered)
     centre = np.asarray(args.bag_centre)
     equator, polar = args.bag_radii
     scaled = (current - centre) / np.array([equator, equator, polar])
