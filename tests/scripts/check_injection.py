@@ -7,7 +7,8 @@ through --set) and checks what the scene must show:
     >= 0 at every step;
   - folding: the optic's width across the injection axis (the distance in
     the y-z plane of its rim points at y = +-3 mm) falls to the nozzle's
-    inner diameter or less while the optic's centre passes the nozzle;
+    inner diameter or less while the optic's centre passes the nozzle
+    (from before its start to beyond its tip);
   - exit: the lens's trailing point (the trailing haptic's end) passes the
     nozzle's tip;
   - deployment: at the end, at rest in the bag (kinetic energy a small
@@ -195,8 +196,14 @@ def check_fold_and_exit(checks, history, args):
           f"{folded:.4g} mm while its centre and rim are in the nozzle "
           f"(inner diameter {2 * args.nozzle_radius:.4g} mm; "
           f"{int(in_nozzle.sum())} steps)")
+    # Passes: from before the nozzle's start to beyond its tip, so that
+    # the width above was checked along the whole nozzle, not at one step.
+    print(f"optic centre: x = {centre_x.min():.4g} to {centre_x.max():.4g} mm "
+          f"(nozzle {args.nozzle_start:g} to {args.nozzle_tip:g} mm)")
+    passes = (centre_x.min() < args.nozzle_start
+              and centre_x.max() > args.nozzle_tip)
     checks("the optic folds to the nozzle's diameter and its centre passes "
-           "the nozzle", in_nozzle.any() and folded <= 2 * args.nozzle_radius)
+           "the nozzle", passes and folded <= 2 * args.nozzle_radius)
     trailing = -6.3 + column(history, "trail_ux")
     print(f"trailing haptic's end: x = {trailing.max():.4g} mm at most "
           f"(nozzle tip {args.nozzle_tip} mm)")
