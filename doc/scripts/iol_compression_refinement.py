@@ -30,6 +30,8 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from doc_common import ROOT, finish_plot, machine_and_commit, write_csv  # noqa: E402
+sys.path.insert(0, os.path.join(ROOT, "tests", "scripts"))
+from richardson import richardson  # noqa: E402
 
 import matplotlib  # noqa: E402
 matplotlib.use("Agg")
@@ -44,6 +46,9 @@ DIAMETERS = (12.6, 12.1, 11.6, 11.1, 10.6, 10.0)  # mm, validation.md's
 # Castigliano's initial stiffness of the square-cut C-loop loaded at its
 # farthest point (doc/validation.md, "one haptic against Castigliano").
 CASTIGLIANO_MN_PER_MM = 0.0321
+# The extrapolated row's order of convergence, per column extrapolated.
+ORDER_COLUMNS = {"initial_stiffness_mn_per_mm": "initial_stiffness_order",
+                 "force_at_10_mm_mn": "force_at_10_mm_order"}
 
 
 def compress(coshell, sizes, lens_constants, output):
@@ -87,24 +92,20 @@ def mesh_row(sizes, rows, triangles):
     return row
 
 
-def richardson(values):
-    """The limit of three values on meshes halved in turn, and the order
-    they converge at. The limit is nan where they do not converge
-    monotonically, or at an order below a half: so slow a convergence is
-    not yet the asymptotic one, and its extrapolation would mean nothing."""
-    a, b, c = values
-    if (a - b) * (b - c) <= 0:
-        return math.nan, math.nan
-    ratio = (a - b) / (b - c)
-    order = math.log2(ratio)
-    if order < 0.5:
-        return math.nan, order
-    return c - (b - c) / (ratio - 1), order
+def extrapolated(values):
+    """Richardson's limit of three values on meshes halved in turn and
+    the order they converge at. No limit below the order 0.5: so slow a
+    convergence is not yet the asymptotic one, and its extrapolation would
+    mean nothing."""
+    order, limit = richardson(*values)
+    return (limit if order >= 0.5 else math.nan), order
 
 
-def plot(rows, limit, commit, name):
+def plot(rows, commit, name):
     figure, (left, right) = plt.subplots(1, 2, figsize=(11, 4))
     meshes = [r for r in rows if r["triangles"] != "extrapolated"]
+    limit = next((r["initial_stiffness_mn_per_mm"] for r in rows
+                  if r["triangles"] == "extrapolated"), math.nan)
     for r in meshes:
         left.plot(DIAMETERS, [r[f"force_at_{d:g}_mm_mn"] for d in DIAMETERS],
                   "o-", label=f"{r['triangles']} triangles")
@@ -133,12 +134,13 @@ def read_rows(path):
     with open(path) as f:
         lines = f.readlines()
     commit = lines[0].split("; commit ", 1)[1].strip()
-    rows = []
-    for row in csv.DictReader(line for line in lines if line[0] != "#"):
-        rows.append({k: v if k == "triangles" and not v.isdigit()
-                     else float(v) if "." in v or "nan" in v
-                     else int(v) if v else None
-                     for k, v in row.items()})
+    rows = list(csv.DictReader(line for line in lines if line[0] != "#"))
+    for row in rows:
+        for key, text in row.items():
+            if key == "triangles":
+                row[key] = int(text) if text.isdigit() else text
+            else:
+                row[key] = float(text) if text else math.nan
     return rows, commit
 
 
@@ -157,7 +159,7 @@ def main():
     name = "iol_compression_refinement" + args.tag
     if args.replot:
         rows, commit = read_rows(os.path.join(OUT, name + ".csv"))
-        plot(rows, rows[-1]["initial_stiffness_mn_per_mm"], commit, name)
+        plot(rows, commit, name)
         return
     if not args.coshell:
         parser.error("--coshell is needed to run the compressions")
@@ -170,16 +172,12 @@ def main():
                 os.path.join(work, f"mesh_{k}"))
             rows.append(mesh_row(sizes, compression, triangles))
             print(rows[-1], flush=True)
-    limit = math.nan
     if len(rows) == 3:
-        extrapolated = {"triangles": "extrapolated"}
-        for key in ("initial_stiffness_mn_per_mm", "force_at_10_mm_mn"):
-            value, order = richardson([r[key] for r in rows])
-            extrapolated[key] = round(value, 6)
-            extrapolated[key.replace("_mn", "_order").replace(
-                "_per_mm", "")] = round(order, 2)
-        limit = extrapolated["initial_stiffness_mn_per_mm"]
-        rows.append(extrapolated)
+        limits = {"triangles": "extrapolated"}
+        for key, order_key in ORDER_COLUMNS.items():
+            value, order = extrapolated([r[key] for r in rows])
+            limits[key], limits[order_key] = round(value, 6), round(order, 2)
+        rows.append(limits)
     os.makedirs(OUT, exist_ok=True)
     write_csv(os.path.join(OUT, name + ".csv"), rows,
               [f"machine: {machine}; commit {commit}",
@@ -190,7 +188,7 @@ def main():
                "limit of the three meshes (none below order 0.5) and the "
                "order they show"],
               list(dict.fromkeys(k for r in rows for k in r)))
-    plot(rows, limit, commit, name)
+    plot(rows, commit, name)
 
 
 if __name__ == "__main__":

@@ -17,6 +17,8 @@ import os
 import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.join(ROOT, "tests", "scripts"))
+from richardson import richardson  # noqa: E402
 
 
 def main():
@@ -37,16 +39,14 @@ def main():
                   "error": f"{(v[-1] - ref) / abs(ref):+.3e}",
                   "order": "", "richardson": "", "richardson_vs_reference": ""}
         if len(v) >= 3:
-            d1, d2 = v[-2] - v[-3], v[-1] - v[-2]
-            if d1 != 0 and d2 != 0 and d1 * d2 > 0:
-                p = math.log2(d1 / d2)
-                record["order"] = f"{p:.2f}"
-                if p > 0:
-                    limit = v[-1] + d2 / (2 ** p - 1)
-                    record["richardson"] = f"{limit:.6g}"
-                    record["richardson_vs_reference"] = f"{(limit - ref) / abs(ref):+.3e}"
-            else:
+            p, limit = richardson(*v[-3:])
+            if math.isnan(p):
                 record["order"] = "non-monotone"
+            else:
+                record["order"] = f"{p:.2f}"
+            if not math.isnan(limit):
+                record["richardson"] = f"{limit:.6g}"
+                record["richardson_vs_reference"] = f"{(limit - ref) / abs(ref):+.3e}"
         out.append(record)
     target = os.path.join(os.path.dirname(path), "convergence.csv")
     with open(target, "w", newline="") as f:

@@ -32,6 +32,7 @@ import shutil
 import subprocess
 import sys
 
+from richardson import richardson
 from scene_runner import add_scene_arguments
 
 
@@ -114,12 +115,10 @@ def check_self_order(output, minimum):
         rows = list(csv.DictReader(f))
     name = list(rows[0])[4]
     q1, q2, q3 = (float(r[name]) for r in rows[-3:])
-    d1, d2 = q2 - q1, q3 - q2
-    if d1 == 0 or d2 == 0 or d1 * d2 < 0:
+    order, extrapolated = richardson(q1, q2, q3)
+    if math.isnan(order):
         print(f"{name}: non-monotone finest levels ({q1}, {q2}, {q3})")
         return [f"{name} does not converge monotonically"]
-    order = math.log(abs(d1 / d2), 2)
-    extrapolated = q3 + d2 / (2 ** order - 1)
     print(f"{name}: self-observed order {order:.2f} (required >= {minimum}); "
           f"Richardson extrapolation {extrapolated:.6g}")
     return [] if order >= minimum else [f"{name}: order {order:.2f} < {minimum}"]
