@@ -274,6 +274,7 @@ namespace coshell::driver
     result.n_cells              = surface.n_active_cells();
     result.n_vertices           = surface.n_used_vertices();
     result.n_dofs               = model.n_dofs();
+    result.mass                 = model.mass();
     result.reference            = quantities_.references();
     result.cholmod_fallbacks    = linear_solver_.cholmod_fallbacks();
     result.factorizations       = linear_solver_.factorizations();

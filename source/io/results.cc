@@ -44,6 +44,8 @@ namespace coshell::io
     json["n_dofs"]                   = n_dofs;
     json["n_inactive_dofs"]          = n_inactive_dofs;
     json["linear_solver_iterations"] = linear_solver_iterations;
+    if (mass > 0)
+      json["mass"] = mass;
     if (cholmod_fallbacks > 0)
       json["cholmod_fallbacks"] = cholmod_fallbacks;
     if (reused_factor_solves > 0)

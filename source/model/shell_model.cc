@@ -204,6 +204,18 @@ namespace coshell::model
     return range;
   }
 
+  double ShellModel::mass() const
+  {
+    double sum = 0;
+    for (const auto &cell : dof_handler_.active_cell_iterators())
+    {
+      const auto &cell_material = material(cell);
+      sum += cell_material.density * cell_material.thickness *
+             element::area(triangle(cell));
+    }
+    return sum;
+  }
+
   void ShellModel::number_dofs_by_rank()
   {
     locally_owned_dofs_ = complete_index_set(dof_handler_.n_dofs());

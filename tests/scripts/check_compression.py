@@ -8,9 +8,14 @@ gap stays non-negative at every step, the two clamps' forces balance
 compression and is finite and positive at the end. A lens that buckles
 out of its plane (the modified-L: its force peaks, then drops) is
 checked with --buckle-between: the force grows until a first drop that
-starts at a diameter in the given window, and need not grow after it."""
+starts at a diameter in the given window, and need not grow after it.
+A lens lying on a floor under its weight (more obstacles than the two
+clamps, Loads/Gravity along -z) is checked with --gravity: at every step
+the obstacles carry the lens's weight, mass (summary.json) times gravity,
+within 1 % (vertical equilibrium)."""
 import argparse
 import csv
+import json
 import math
 import os
 
@@ -19,17 +24,34 @@ from scene_runner import (add_scene_arguments, exit_with,
 
 
 def read_clamp_forces(output):
-    """{time: (fx of obstacle 1, fx of obstacle 2, smallest gap)}"""
+    """{time: [fx of obstacle 1, fx of obstacle 2, smallest gap of any
+    obstacle, the z forces of all obstacles summed]}"""
     rows = {}
     with open(os.path.join(output, "contact_forces.csv")) as f:
         for row in csv.DictReader(f):
-            t = float(row["time"])
-            fx, gap = float(row["fx"]), float(row["min_distance"])
-            old = rows.get(t, [0.0, 0.0, math.inf])
-            old[int(row["obstacle"]) - 1] = fx
-            old[2] = min(old[2], gap)
-            rows[t] = old
+            forces = rows.setdefault(float(row["time"]),
+                                     [0.0, 0.0, math.inf, 0.0])
+            obstacle = int(row["obstacle"])
+            if obstacle <= 2:  # the clamps; a floor is obstacle 3
+                forces[obstacle - 1] = float(row["fx"])
+            forces[2] = min(forces[2], float(row["min_distance"]))
+            forces[3] += float(row["fz"])
     return rows
+
+
+def weight_failures(output, forces, gravity):
+    """The obstacles carry the lens's weight at every step: the z forces
+    the lens exerts on them sum to -mass * gravity (1 %)."""
+    with open(os.path.join(output, "summary.json")) as f:
+        mass = json.load(f)["mass"]  # t
+    weight = 1e3 * mass * gravity  # mN (t mm/s^2 = N)
+    worst = max(abs(1e3 * row[3] + weight) for row in forces.values())
+    print(f"lens mass {1e9 * mass:.4g} mg, weight {weight:.4g} mN; largest "
+          f"difference of the obstacles' vertical load: {worst:.3g} mN")
+    if worst > 0.01 * weight:
+        return [f"the obstacles carry the weight {weight:.4g} mN to "
+                f"{worst:.3g} mN, more than 1 %"]
+    return []
 
 
 def read_optic(output):
@@ -90,6 +112,9 @@ def main():
                         help="the force's first drop starts at a diameter "
                         "in [D_SMALL, D_LARGE] mm (a buckle); later drops "
                         "are allowed")
+    parser.add_argument("--gravity", type=float,
+                        help="the scene's gravity along -z, mm/s^2: check "
+                        "that the obstacles carry the lens's weight")
     parser.add_argument("--kept-factors-used", action="store_true",
                         help="some solve used kept factors (with Linear "
                         "solver/Reuse factorization)")
@@ -98,7 +123,7 @@ def main():
     forces, optic = read_clamp_forces(args.output), read_optic(args.output)
     rows = []
     for t in sorted(forces):
-        right, left, gap = forces[t]
+        right, left, gap, _ = forces[t]
         diameter = 2 * (args.clamp_start - args.clamp_speed * t +
                         args.contact_radius)
         rows.append((t, diameter, 1e3 * right, *optic[t][:2], optic[t][2],
@@ -129,6 +154,8 @@ def main():
         failures.append(f"clamp forces differ by {imbalance} mN, more than "
                         f"1 % of {final[2]} mN")
     failures += check_growth(rows, final, args.buckle_between)
+    if args.gravity is not None:
+        failures += weight_failures(args.output, forces, args.gravity)
     if args.kept_factors_used:
         failures += kept_factors_failures(args.output)
     exit_with(failures)

@@ -7,6 +7,8 @@
 // geometric stiffness (Nonlinear solver/Geometric stiffness): the same
 // residual, a tangent within O(|dp|^2) of the exact one after a correction
 // dp, and the exact tangent again after restore().
+//
+// The shell's mass (ShellModel::mass), which summary.json reports.
 
 #include <coshell/mesh/mesh.h>
 #include <coshell/model/internal_force.h>
@@ -242,4 +244,28 @@ TEST(ShellProblem, AssemblesTheLowerTriangleAloneToTheBit)
     for (auto e = matrix.begin(i); e != matrix.end(i); ++e)
       ASSERT_EQ(lower.serial().el(i, e->column()), e->value())
           << "entry (" << i << ", " << e->column() << "), mirrored";
+}
+
+TEST(ShellModel, MassIntegratesDensityTimesALinearThickness)
+{
+  // [0, 2]^2 with density 3 and thickness 0.1 + 0.05 x, evaluated at each
+  // triangle's centroid, which integrates a linear field exactly:
+  // 3 (0.1 * 4 + 0.05 * int x dA) = 3 (0.4 + 0.05 * 4) = 1.8.
+  mesh::Surface surface;
+  mesh::make_rectangle(surface, 2, 2, 3, 2, mesh::TrianglePattern::crossed);
+  model::ElementParameters parameters;
+  parameters.material.density     = 3;
+  parameters.thickness_expression = "0.1 + 0.05 * x";
+  const model::ShellModel graded{surface, parameters,
+                                 dealii::Tensor<1, 3>({0, 0, 1})};
+  EXPECT_NEAR(graded.mass(), 1.8, 1e-13);
+  parameters.thickness_expression = "";
+  parameters.material.thickness   = 0.1;
+  const model::ShellModel uniform{surface, parameters,
+                                  dealii::Tensor<1, 3>({0, 0, 1})};
+  EXPECT_NEAR(uniform.mass(), 3 * 0.1 * 4, 1e-13);
+  parameters.material.density = 0;
+  const model::ShellModel massless{surface, parameters,
+                                   dealii::Tensor<1, 3>({0, 0, 1})};
+  EXPECT_EQ(massless.mass(), 0);
 }

@@ -23,6 +23,8 @@ namespace coshell::io
     double        h       = 0; ///< longest edge in the mesh
     unsigned int  n_cells = 0, n_vertices = 0;
     unsigned long n_dofs = 0, n_inactive_dofs = 0;
+    /// The shell's mass (ShellModel::mass); written when positive.
+    double mass = 0;
     /// Krylov iterations of the linear solve (1 for a direct solver).
     unsigned long linear_solver_iterations = 0;
     /// Factorizations CHOLMOD refused (not positive definite), done by

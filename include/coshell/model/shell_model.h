@@ -100,6 +100,11 @@ namespace coshell::model
     double vertex_thickness(unsigned int v) const;
     /// Smallest and largest cell thickness.
     std::pair<double, double> thickness_range() const;
+    /// The shell's mass, the sum over its cells of density x thickness x
+    /// area (mass units of the scene: tonne in mm-N-s scenes); 0 without
+    /// Material/Density. Every rank holds the whole mesh, so every rank
+    /// gets the whole sum.
+    double mass() const;
 
     element::SpatialTriangle triangle(const CellIterator &cell) const;
     /// Unit normal of the cell, oriented consistently over the surface.
