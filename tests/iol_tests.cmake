@@ -118,6 +118,14 @@ set(coarse_lens "Mesh/Gmsh parameters=optic_mesh_size = 0.9, haptic_mesh_size = 
 # 20 and 24 when written), the 'done' and error lines, the end at 0.3 s.
 coshell_iol_test(iol.interactive_injection check_interactive.py
                  injection.prm --obstacles 6 --set ${coarse_lens})
+# A session into the push (the plunger starts at rod_out_time = 1.3 s and
+# meets the trailing haptic about 0.1 s later): the step lines' forces are
+# contact_forces.csv's, and at t = 1.5 s the plunger's (the second force)
+# is positive, the force a device on the plunger would render.
+coshell_iol_test(iol.interactive_injection.push check_interactive.py
+                 injection.prm --obstacles 6 --set ${coarse_lens}
+                 --set ${no_vtu} --case "1.3 1.5 quit" "1.3 1.5" 1.5
+                 --pushing 2)
 
 # The plunger driven by a device (fold to 1.3 s, 1 mm of input by 1.5 s,
 # then one step of 0.1 ms): the slope line's dF/ds against the central
@@ -166,10 +174,12 @@ coshell_iol_test(iol.tuck check_tuck.py tuck.prm
 # 4 mm tube would cross the flat lens (6 mm optic, 1.5 mm below the
 # tube's axis): the lens starts inside its wall; a nozzle narrower than
 # twice the lens's haptic thickness is refused by injector.geo, which gets
-# the constant haptic_thickness that Material/Thickness uses (here 0.9 mm
-# haptics, changed by Constants/Changes as a user would on the command
-# line, against a 1.7 mm nozzle, which would pass 0.45 mm ones); a
-# plunger speed of 0 or below is refused (Constants/Positive) where it is
+# the constants haptic_thickness that Material/Thickness uses and
+# nozzle_radius (here 0.9 mm haptics against a 1.7 mm nozzle, which would
+# pass 0.45 mm ones; both changed by Constants/Changes as a user would on
+# the command line); a plunger wider than the nozzle's bore is refused
+# (Constants/Positive: plunger_clearance, nozzle_radius - plunger_radius);
+# a plunger speed of 0 or below is refused (Constants/Positive) where it is
 # defined, before push_time divides by it; a stage whose duration names
 # no constant is refused naming the stage; two obstacles writing one Force
 # file are refused naming both.
@@ -179,8 +189,10 @@ coshell_bad_input_test(iol_lens_inside_cartridge_wall
   ${injection} --set "Contact/Obstacle 1/Translation=-8$<SEMICOLON> 0$<SEMICOLON> axis_height")
 coshell_bad_input_test(iol_nozzle_narrower_than_two_haptics
   "Contact/Obstacle 1 .'cartridge'.: gmsh could not mesh .*injector.geo': Error.*nozzle's inner diameter 2 . nozzle_radius = 1.7 mm is not wider than twice the haptic thickness .haptic_thickness = 0.9 mm"
-  ${injection} --set "Constants/Changes=haptic_thickness = 0.9"
-  --set "Contact/Obstacle 1/Gmsh parameters=nozzle_tip = nozzle_tip, nozzle_radius = 0.85, haptic_thickness = haptic_thickness")
+  ${injection} --set "Constants/Changes=haptic_thickness = 0.9, nozzle_radius = 0.85")
+coshell_bad_input_test(iol_plunger_wider_than_nozzle
+  "Constants/Values: plunger_clearance = -0.05 must be > 0"
+  ${injection} --set "Constants/Changes=plunger_radius = 1.8")
 coshell_bad_input_test(iol_two_obstacles_one_force_file
   "Contact/Obstacle 6/Force file: 'plunger_force.csv' is Contact/Obstacle 2's Force file too"
   ${injection} --set "Contact/Obstacle 6/Force file=plunger_force.csv"

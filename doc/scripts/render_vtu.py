@@ -406,6 +406,7 @@ class Scene:
     shell_values: np.ndarray
     field_label: str
     obstacles: Faces
+    panel_label: str = None  # --labels: named above the time in a montage
 
 
 def load_scene(shell_file, obstacle_files, time, args):
@@ -596,8 +597,10 @@ def render_montage(scenes, bounds, colouring, args, path):
     all_axes = []
     for number, scene in enumerate(scenes):
         axes = figure.add_subplot(rows, columns, number + 1, projection="3d")
+        when = f"t = {scene.time:g}" if scene.time is not None else scene.label
         draw_scene(axes, scene, bounds, colouring, args,
-                   f"t = {scene.time:g}" if scene.time is not None else scene.label)
+                   f"{scene.panel_label}\n{when}" if scene.panel_label
+                   else when)
         all_axes.append(axes)
     # 3-D panels carry wide empty margins of their own: pack them closer.
     figure.subplots_adjust(left=0.02, right=0.98, wspace=0.02, hspace=0.1,
@@ -641,6 +644,9 @@ def parse_arguments(argv):
     parser.add_argument("--montage", help="also one PNG with the selected times "
                         "side by side")
     parser.add_argument("--montage-columns", type=int, default=4)
+    parser.add_argument("--labels", nargs="+",
+                        help="with --times: a name per time (e.g. the stage), "
+                        "above each panel's time")
     parser.add_argument("--color-by", default="displacement_magnitude",
                         help=f"{'|'.join(SPECIAL_FIELDS)} or an array name")
     parser.add_argument("--cmap", default="viridis")
@@ -663,6 +669,8 @@ def parse_arguments(argv):
         parser.error("give --out and/or --montage")
     if args.vtu and (args.times or args.all):
         parser.error("--times/--all need --pvd")
+    if args.labels and len(args.labels) != len(args.times or []):
+        parser.error("--labels needs one label per time of --times")
     return args
 
 
@@ -672,9 +680,16 @@ def load_scenes(args):
         scene = load_scene(args.vtu, neighbour_obstacle_file(args.vtu), None, args)
         return [(scene, args.out)]
     frames = select_frames(read_pvd(args.pvd), args.times, args.all)
-    return [(load_scene(f.shell_file, f.obstacle_files, f.time, args),
-             f"{args.out}-{f.index:04d}.png" if args.out else None)
-            for f in frames]
+    scenes = [(load_scene(f.shell_file, f.obstacle_files, f.time, args),
+               f"{args.out}-{f.index:04d}.png" if args.out else None)
+              for f in frames]
+    if args.labels:
+        if len(frames) != len(args.labels):
+            sys.exit(f"{len(args.labels)} labels for {len(frames)} frames: "
+                     "two times picked the same frame")
+        for (scene, _), label in zip(scenes, args.labels):
+            scene.panel_label = label
+    return scenes
 
 
 def main(argv=None):

@@ -93,9 +93,20 @@ namespace
     }
   };
 
+  /// The prm's Output/Directory as written (parse_parameters takes it
+  /// as it is, relative to the working directory).
+  std::string output_entry(dealii::ParameterHandler &prm)
+  {
+    prm.enter_subsection("Output");
+    const std::string directory = prm.get("Directory");
+    prm.leave_subsection();
+    return directory;
+  }
+
   /// Reads the parameters and runs the scene the command line names
   /// (or prints the parameters); throws on bad input or a failed solve.
-  int run_scene(const CommandLine &line)
+  /// 'output' is set to the output directory as soon as it is known.
+  int read_and_run_scene(const CommandLine &line, std::string &output)
   {
     dealii::ParameterHandler prm;
     coshell::driver::Scene::declare_parameters(prm);
@@ -106,11 +117,10 @@ namespace
       prm.print_parameters(std::cout, dealii::ParameterHandler::PRM);
       return 0;
     }
+    if (output.empty())
+      output = output_entry(prm);
     coshell::driver::Scene scene;
     scene.parse_parameters(prm, line.prm_file);
-    const std::string output = line.output_directory.empty()
-                                   ? scene.output().directory
-                                   : line.output_directory;
     // Interactive runs keep standard output for the protocol; the log
     // goes to standard error.
     std::ostream &log = line.interactive ? std::cerr : std::cout;
@@ -128,6 +138,29 @@ namespace
     scene.run(output, log);
     log << "results written to " << output << "\n";
     return 0;
+  }
+
+  /// read_and_run_scene; a run refused for its input (a bad parameter, a
+  /// missing checkpoint) also removes an earlier run's summary from the
+  /// output directory, as Scene::run does for a run that fails. Before the
+  /// prm is read that directory is known only from --output.
+  int run_scene(const CommandLine &line)
+  {
+    std::string output = line.output_directory;
+    try
+    {
+      return read_and_run_scene(line, output);
+    }
+    catch (const coshell::driver::Interrupted &)
+    {
+      throw; // a stopped run is not a refused one; it wrote a checkpoint
+    }
+    catch (const std::exception &)
+    {
+      if (!output.empty())
+        coshell::driver::Scene::forget_results(output);
+      throw;
+    }
   }
 } // namespace
 

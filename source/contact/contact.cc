@@ -95,7 +95,7 @@ namespace coshell::contact
     if (parameters_.self_contact)
       exclude_reference_neighbours();
     vertex_force_.reinit(model.n_dofs());
-    smallest_gap_ = infinity;
+    forget_gaps();
   }
 
   double Contact::offset(unsigned int obstacle,
@@ -241,6 +241,24 @@ namespace coshell::contact
   double Contact::smallest_gap() const
   {
     return smallest_gap_;
+  }
+
+  double Contact::smallest_obstacle_gap(unsigned int o) const
+  {
+    return smallest_gap_by_side_[o + 1];
+  }
+
+  double Contact::smallest_self_gap() const
+  {
+    return smallest_gap_by_side_[0];
+  }
+
+  void Contact::forget_gaps()
+  {
+    smallest_gap_        = std::numeric_limits<double>::infinity();
+    largest_penetration_ = 0;
+    smallest_gap_by_side_.assign(parameters_.obstacles.size() + 1,
+                                 smallest_gap_);
   }
 
   double Contact::largest_penetration() const
@@ -428,8 +446,7 @@ namespace coshell::contact
     if (parameters_.method == Method::barrier &&
         smallest_gap_ < parameters_.stiffening_gap_ratio * activation_)
       kappa_ *= 2; // the barrier is getting too stiff a spring: stiffen it
-    smallest_gap_        = std::numeric_limits<double>::infinity();
-    largest_penetration_ = 0;
+    forget_gaps();
   }
 
   void Contact::begin_trial()
@@ -548,7 +565,6 @@ namespace coshell::contact
               << " (half the shell thickness plus the obstacle's Offset)";
       throw std::runtime_error(message.str());
     }
-    smallest_gap_        = std::numeric_limits<double>::infinity();
-    largest_penetration_ = 0;
+    forget_gaps();
   }
 } // namespace coshell::contact

@@ -101,10 +101,9 @@ namespace coshell::contact
            {n[8], n[9]},
            Tensor<1, 3>({n[10], n[11], n[12]})});
     }
-    positions_            = shell_positions(state);
-    saved_positions_      = positions_;
-    smallest_gap_         = std::numeric_limits<double>::infinity();
-    largest_penetration_  = 0;
+    positions_       = shell_positions(state);
+    saved_positions_ = positions_;
+    forget_gaps();
     projecting_this_step_ = false;
   }
 } // namespace coshell::contact

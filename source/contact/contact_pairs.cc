@@ -123,7 +123,10 @@ namespace coshell::contact
         if (!keep[k] || !candidates_[k].listed || !smallest_of_its_key(k, keep))
           continue;
         contact_.pairs_.push_back(found_[k]);
-        contact_.smallest_gap_ = std::min(contact_.smallest_gap_, gaps_[k]);
+        contact_.smallest_gap_  = std::min(contact_.smallest_gap_, gaps_[k]);
+        const unsigned int side = found_[k].self ? 0 : found_[k].obstacle + 1;
+        double            &side_gap = contact_.smallest_gap_by_side_[side];
+        side_gap                    = std::min(side_gap, gaps_[k]);
         contact_.largest_penetration_ =
             std::max(contact_.largest_penetration_, -gaps_[k]);
       }

@@ -586,7 +586,7 @@ namespace coshell::driver
       for (unsigned int d = 0; d < 3; ++d)
         row.push_back(loads[o].moment[d]);
       row.push_back(loads[o].active_pairs);
-      row.push_back(out.contact->smallest_gap());
+      row.push_back(out.contact->smallest_obstacle_gap(o));
       row.push_back(work[o]);
       const Tensor<1, 3> moved = out.contact->obstacle_displacement(o);
       for (unsigned int d = 0; d < 3; ++d)
@@ -606,7 +606,7 @@ namespace coshell::driver
     if (out.contact->self_contact())
       out.contact_forces->row({double(step), time, 0, 0, 0, 0, 0, 0, 0,
                                double(out.contact->self_active_pairs()),
-                               out.contact->smallest_gap(), 0, 0, 0, 0});
+                               out.contact->smallest_self_gap(), 0, 0, 0, 0});
   }
 
   /// The quantities of interest of a dynamic step, with the largest
@@ -1424,14 +1424,21 @@ namespace coshell::driver
     result.wall_time_s.output = seconds_since(phase);
   }
 
+  void Scene::forget_results(const std::string &directory)
+  {
+    // Every rank of an MPI run may get here: a file another rank removed
+    // first is no error.
+    std::error_code ignored;
+    std::filesystem::remove(directory + "/summary.json", ignored);
+    std::filesystem::remove(directory + "/convergence.csv", ignored);
+  }
+
   io::Json Scene::run(const std::string &output_directory, std::ostream &log)
   {
     std::filesystem::create_directories(output_directory);
     const std::string summary_file = output_directory + "/summary.json";
     const std::string csv_file     = output_directory + "/convergence.csv";
-    // A failed run must not leave an earlier run's results looking current.
-    std::filesystem::remove(summary_file);
-    std::filesystem::remove(csv_file);
+    forget_results(output_directory);
 
     levels_.clear();
     const bool      study = mesh_.refinement_levels.size() > 1;
@@ -1455,6 +1462,13 @@ namespace coshell::driver
     summary["linear_solver"] = linear_solver_.method();
     summary["threads"]       = solvers::ThreadSettings::n_threads();
     summary["mpi_ranks"]     = solvers::n_ranks();
+    // The design values this run used, Changes applied: a checker or a
+    // study reads them here instead of assuming the prm's.
+    io::Json::Object constants(io::expression_constants().begin(),
+                               io::expression_constants().end());
+    constants.erase("pi");
+    if (!constants.empty())
+      summary["constants"] = constants;
     if (study)
     {
       summary["levels"] = level_summaries;

@@ -10,7 +10,9 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <iomanip>
 #include <optional>
+#include <sstream>
 #include <stdexcept>
 
 namespace coshell::io
@@ -113,6 +115,15 @@ namespace coshell::io
       return definitions;
     }
 
+    /// 'value' to 6 significant digits: a derived constant's rounding
+    /// (1.7 - 1.75 = -0.050000000000000044) is no part of the message.
+    std::string short_number(double value)
+    {
+      std::ostringstream text;
+      text << std::setprecision(6) << value;
+      return text.str();
+    }
+
     /// The scene's constants with pi, each value a number or an expression
     /// of those before it; a constant listed in 'positive' must be > 0 where
     /// it is defined, so that the message names it rather than a later
@@ -133,7 +144,7 @@ namespace coshell::io
                 positive.end() &&
             !(value > 0))
           throw std::invalid_argument(
-              where + ": " + name + " = " + Utilities::to_string(value) +
+              where + ": " + name + " = " + short_number(value) +
               " must be > 0 (it is listed in Constants/Positive)");
       }
       for (const std::string &name : positive)

@@ -25,15 +25,17 @@ from scene_runner import (add_scene_arguments, exit_with,
 
 def read_clamp_forces(output):
     """{time: [fx of obstacle 1, fx of obstacle 2, smallest gap of any
-    obstacle, the z forces of all obstacles summed]}"""
+    obstacle, the z forces of all obstacles summed, how far the clamps
+    have closed (ux of obstacle 1 less ux of obstacle 2)]}"""
     rows = {}
     with open(os.path.join(output, "contact_forces.csv")) as f:
         for row in csv.DictReader(f):
             forces = rows.setdefault(float(row["time"]),
-                                     [0.0, 0.0, math.inf, 0.0])
+                                     [0.0, 0.0, math.inf, 0.0, 0.0])
             obstacle = int(row["obstacle"])
             if obstacle <= 2:  # the clamps; a floor is obstacle 3
                 forces[obstacle - 1] = float(row["fx"])
+                forces[4] += (1 if obstacle == 1 else -1) * float(row["ux"])
             forces[2] = min(forces[2], float(row["min_distance"]))
             forces[3] += float(row["fz"])
     return rows
@@ -101,8 +103,6 @@ def main():
     parser.add_argument("--clamp-start", type=float, default=1.55,
                         help="clamp centre's distance from the lens centre "
                         "at t = 0, mm")
-    parser.add_argument("--clamp-speed", type=float, default=1.0,
-                        help="mm/s")
     parser.add_argument("--contact-radius", type=float, default=5.0,
                         help="radius of the clamps' offset faces, mm")
     parser.add_argument("--final-diameter", type=float, default=10.0)
@@ -123,9 +123,10 @@ def main():
     forces, optic = read_clamp_forces(args.output), read_optic(args.output)
     rows = []
     for t in sorted(forces):
-        right, left, gap, _ = forces[t]
-        diameter = 2 * (args.clamp_start - args.clamp_speed * t +
-                        args.contact_radius)
+        right, left, gap, _, closed = forces[t]
+        # From where the clamps are, as coshell moved them (the prm's
+        # Translation), not from an assumed speed.
+        diameter = 2 * (args.clamp_start + args.contact_radius) + closed
         rows.append((t, diameter, 1e3 * right, *optic[t][:2], optic[t][2],
                      -1e3 * left, gap))
     with open(os.path.join(args.output, "compression.csv"), "w") as f:

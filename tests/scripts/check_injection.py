@@ -51,7 +51,7 @@ import sys
 import numpy as np
 
 from scene_runner import (add_scene_arguments, energy_balance, exit_with,
-                          force_file_check, run_contact_scene)
+                          force_file_check, read_rows, run_contact_scene)
 
 SCRIPTS = os.path.dirname(os.path.abspath(__file__))
 RENDER = os.path.join(SCRIPTS, "..", "..", "doc", "scripts", "render_vtu.py")
@@ -65,11 +65,15 @@ def parse_arguments():
     add_scene_arguments(parser)
     parser.add_argument("--plunger", type=int, default=2,
                         help="the plunger's obstacle number")
-    parser.add_argument("--nozzle-radius", type=float, default=1.75)
-    parser.add_argument("--nozzle-start", type=float, default=11.5,
-                        help="x where the nozzle begins (the taper's end), mm")
-    parser.add_argument("--nozzle-tip", type=float, default=15.0,
-                        help="x of the nozzle's tip in the lens frame, mm")
+    parser.add_argument("--nozzle-radius", type=float,
+                        help="inner, mm (default: the run's constant "
+                        "nozzle_radius, see NOZZLE)")
+    parser.add_argument("--nozzle-start", type=float,
+                        help="x where the nozzle begins (the taper's end), "
+                        "mm (default: nozzle_start)")
+    parser.add_argument("--nozzle-tip", type=float,
+                        help="x of the nozzle's tip in the lens frame, mm "
+                        "(default: nozzle_tip)")
     parser.add_argument("--bag-centre", type=float, nargs=3,
                         default=(17.2, 0.0, 1.5))
     parser.add_argument("--bag-radii", type=float, nargs=2,
@@ -151,6 +155,27 @@ def travel_measures(displacement, push, work, window=0.5):
     return float(averaged.max()), float(work[end - 1])
 
 
+def check_force_file_work(checks, output, work):
+    """plunger_force.csv's force integrated over its travel, by trapezoids
+    on its rows up to the largest travel, against the code's work of the
+    push, which the energy balance reads: the code takes the barrier's
+    part as the change of its potential and sums friction's dissipation,
+    so the two are independent sums of one work. Measured 0.3 % apart on
+    the default lens (doc/validation.md); the rows are the quadrature's
+    only nodes."""
+    rows = read_rows(os.path.join(output, "plunger_force.csv"))
+    x = np.array([float(r["plunger_displacement"]) for r in rows])
+    f = np.array([float(r["force_n"]) for r in rows])
+    end = int(np.argmax(x)) + 1
+    trapezoids = float(np.sum(0.5 * (f[1:end] + f[:end - 1]) *
+                              np.diff(x[:end])))
+    print(f"plunger_force.csv: the force over the travel, by trapezoids, "
+          f"{trapezoids:.5g} N mm ({100 * (trapezoids / work - 1):+.2f} % of "
+          f"the code's {work:.5g} N mm)")
+    checks("plunger_force.csv's force over its travel is the push's work "
+           "(1 %)", abs(trapezoids - work) <= 0.01 * abs(work))
+
+
 def check_plunger_force(checks, forces, args, output):
     _, time, displacement, push, work_so_far = plunger_rows(
         forces, args.plunger)
@@ -165,6 +190,7 @@ def check_plunger_force(checks, forces, args, output):
     averaged, work = travel_measures(displacement, push, work_so_far)
     print(f"plunger: largest force over 0.5 mm of travel "
           f"{1e3 * averaged:.4g} mN, work of the push {work:.5g} N mm")
+    check_force_file_work(checks, output, work)
     # Positive: the plunger pushes. Its friction may pull the lens back a
     # little where the lens runs ahead of it (-0.03 mN against a 44 mN
     # peak on the coarse lens), so a pull is allowed up to 1 % of the peak.
@@ -374,9 +400,37 @@ def render(arguments):
     return subprocess.run(command).returncode == 0
 
 
+def sequence_panels(history, times, args):
+    """The sequence's panels, (time of a frame written, label): the
+    stages' ends and the optic's way through the nozzle, each at the
+    nearest frame; a frame two events share is drawn once."""
+    t, stage = column(history, "time"), column(history, "stage")
+    centre_x = column(history, "optic_ux")
+
+    def first(passed):
+        return t[np.argmax(passed)] if passed.any() else None
+    deploy = t[stage == 3]
+    events = [
+        (t[0], "fold: the wings close"),
+        (t[stage == 1].max(), "fold: folded, rod out"),
+        (first(centre_x > args.nozzle_start), "push: optic enters the nozzle"),
+        (first(centre_x > 0.5 * (args.nozzle_start + args.nozzle_tip)),
+         "push: optic in the nozzle"),
+        (first(centre_x > args.nozzle_tip), "push: optic out of the tip"),
+        (t[stage == 2].max(), "push: plunger at the tip"),
+        (deploy[len(deploy) // 4] if len(deploy) else None, "deploy: opening"),
+        (t[-1], "deploy: at rest in the bag")]
+    panels = {}
+    for when, label in events:
+        if when is not None:
+            panels.setdefault(float(times[np.argmin(abs(times - when))]),
+                              label)
+    return sorted(panels.items())
+
+
 def render_figures(checks, args, history, chord, frames):
     """Fig. 4 (the folded lens, when the optic's centre is deepest in the
-    nozzle) and the sequence: fold, push, exit, deployment."""
+    nozzle) and the sequence, each panel named by its stage and event."""
     t = column(history, "time")
     centre_x = column(history, "optic_ux")
     times = np.array([f.time for f in frames])
@@ -384,15 +438,15 @@ def render_figures(checks, args, history, chord, frames):
     folded_time = t[in_nozzle][len(t[in_nozzle]) // 2] if in_nozzle.any() \
         else t[np.argmax(centre_x)]
     pvd = os.path.join(args.output, "solution.pvd")
-    picks = np.linspace(times[0], times[-1], 8)
-    nearest = sorted({float(times[np.argmin(abs(times - p))]) for p in picks})
+    panels = sequence_panels(history, times, args)
     folded = float(times[np.argmin(abs(times - folded_time))])
     drawn = [
         render(["--pvd", pvd, "--times", str(folded), "--out",
                 os.path.join(args.output, "folded"), "--view", "20", "-150",
                 "--fit", "shell", "--edges", "--title",
                 f"folded lens in the nozzle, t = {folded:.3g} s"]),
-        render(["--pvd", pvd, "--times"] + [str(x) for x in nearest] +
+        render(["--pvd", pvd, "--times"] + [repr(x) for x, _ in panels] +
+               ["--labels"] + [label for _, label in panels] +
                ["--out", os.path.join(args.output, "sequence"), "--montage",
                 os.path.join(args.figures, "injection_sequence.png"),
                 "--view", "35", "-100", "--fit", "shell"]),
@@ -469,11 +523,31 @@ def check_strain_fields(checks, history, frame):
           f"of material {int(round(material[worst]))} (1 optic, 2 haptic)")
 
 
+# The nozzle's constants of injection.prm and the values for a scene
+# without them (mm).
+NOZZLE = {"nozzle_radius": 1.75, "nozzle_start": 11.5, "nozzle_tip": 15.0}
+
+
+def take_nozzle_from_run(args):
+    """The nozzle's dimensions not given on the command line are those the
+    run used: its constants in summary.json (Changes applied), so that a
+    nozzle changed with --set "Constants/Changes=nozzle_radius = ..." is
+    checked as built."""
+    with open(os.path.join(args.output, "summary.json")) as f:
+        constants = json.load(f).get("constants", {})
+    for name, fallback in NOZZLE.items():
+        if getattr(args, name) is None:
+            setattr(args, name, constants.get(name, fallback))
+    print(f"nozzle: inner radius {args.nozzle_radius:g} mm from x = "
+          f"{args.nozzle_start:g} to {args.nozzle_tip:g} mm")
+
+
 def main():
     args = parse_arguments()
     checks, forces, history = run_contact_scene(
         args, "lens against the wings, rod, cartridge, plunger, bag and "
         "itself")
+    take_nozzle_from_run(args)
     if args.junction_fillet or args.junction_refined:
         check_junctions(checks, args)
     if args.fold_only is not None:

@@ -54,6 +54,10 @@ def main():
                         help="a session (its lines separated by spaces), "
                         "the times its 'done' lines must give and the time "
                         "(s) the run must end at")
+    parser.add_argument("--pushing", type=int, metavar="K",
+                        help="with --case: obstacle K's force on the last "
+                        "step line of each session is positive (it pushes "
+                        "the shell by then: the injection's plunger)")
     parser.add_argument("--static-stage", nargs=2, type=float,
                         metavar=("START", "DURATION"),
                         help="a static stage's pseudo-time (s), which "
@@ -73,7 +77,8 @@ def main():
                          session_failures(run, output, args.obstacles,
                                           done.split(), float(end),
                                           static_stage=args.static_stage,
-                                          settings=args.set)]
+                                          settings=args.set)
+                         + pushing_failures(run, args.pushing)]
         exit_with(failures)
     # This session writes its VTU, against which its centroids are checked.
     run = run_session(args.coshell, args.prm, args.output,
@@ -141,6 +146,22 @@ def session_failures(run, output, n_obstacles, done_times, end,
         failures.append(f"summary.json: simulated_time_s {simulated}, not "
                         f"{expected}")
     return failures
+
+
+def pushing_failures(run, obstacle):
+    """Obstacle 'obstacle' (None: no check) pushes the shell at the
+    session's last step: its force on that step line is positive."""
+    steps = [l.split() for l in run.stdout.splitlines()
+             if l.startswith("step ")]
+    if obstacle is None or not steps:
+        return []
+    force = float(steps[-1][2 + obstacle])
+    print(f"obstacle {obstacle}'s force at the last step (t = "
+          f"{steps[-1][2]} s): {force:.6g} N")
+    if force > 0:
+        return []
+    return [f"obstacle {obstacle}'s force {force} N at the last step is not "
+            "positive: it does not push the shell"]
 
 
 def input_directions(settings):

@@ -1,8 +1,13 @@
 #!/usr/bin/python3
 """Runs a command that must fail cleanly: non-zero exit status, an error
-message matching a pattern on stderr, no summary.json left behind, and
-no temporary file of the process (coshell-<pid>-*, e.g. a gmsh mesh of
-an obstacle) left in the temp directory.
+message matching a pattern on stderr, no summary.json or convergence.csv
+left behind, and no temporary file of the process (coshell-<pid>-*, e.g.
+a gmsh mesh of an obstacle) left in the temp directory. With --output,
+that directory starts with an earlier run's summary.json and
+convergence.csv, which the failed run must remove: stale results that
+stayed would look like this run's. A command line coshell cannot read
+(exit status 2, the usage printed) runs nothing and touches no file:
+there they must stay as they were.
 
   expect_failure.py --pattern REGEX [--output DIR] -- command args...
 """
@@ -24,8 +29,14 @@ def main():
     parser.add_argument("command", nargs=argparse.REMAINDER)
     args = parser.parse_args()
     command = [c for c in args.command if c != "--"]
-    if args.output and os.path.isdir(args.output):
-        shutil.rmtree(args.output)
+    stale = ("summary.json", "convergence.csv")
+    if args.output:
+        if os.path.isdir(args.output):
+            shutil.rmtree(args.output)
+        os.makedirs(args.output)
+        for name in stale:
+            with open(os.path.join(args.output, name), "w") as f:
+                f.write("an earlier run's result\n")
     started = time.time() - 1  # file times have coarse resolution
     process = subprocess.Popen(command, stdout=subprocess.PIPE,
                                stderr=subprocess.PIPE, text=True)
@@ -45,8 +56,12 @@ def main():
         problems.append("the process crashed instead of reporting the error")
     if not re.search(args.pattern, result.stderr, re.S):
         problems.append(f"stderr does not match /{args.pattern}/")
-    if args.output and os.path.exists(os.path.join(args.output, "summary.json")):
-        problems.append("a summary.json was left behind")
+    for name in stale if args.output else ():
+        left = os.path.exists(os.path.join(args.output, name))
+        if left and result.returncode != 2:
+            problems.append(f"an earlier run's {name} was left behind")
+        if not left and result.returncode == 2:
+            problems.append(f"a command-line error removed {name}")
     if left_behind:
         problems.append(f"temporary files were left behind: {left_behind}")
         for path in left_behind:

@@ -211,6 +211,10 @@ namespace coshell::contact
     /// Smallest gap (distance minus offsets) over every evaluation since
     /// the last save() (+inf if no pair was within reach), length.
     double smallest_gap() const;
+    /// The same of obstacle o's pairs alone, and of the self-contact pairs
+    /// alone: smallest_gap() is the least of these.
+    double smallest_obstacle_gap(unsigned int o) const;
+    double smallest_self_gap() const;
     /// Largest penetration (penalty) since the last save(), length.
     double largest_penetration() const;
     /// Vertex fields in the DoF layout: contact force (ux..uz slots), the
@@ -345,9 +349,12 @@ namespace coshell::contact
     double                              potential_ = 0;
     std::vector<double>                 vertex_gap_;
     dealii::Vector<double>              vertex_force_;
-    double         smallest_gap_ = 0, largest_penetration_ = 0;
-    mutable Timing timing_;
-    bool           pending_ = false;
+    double smallest_gap_ = 0, largest_penetration_ = 0;
+    /// smallest_gap_ by the pairs' side: [0] self contact, [o + 1]
+    /// obstacle o.
+    std::vector<double> smallest_gap_by_side_;
+    mutable Timing      timing_;
+    bool                pending_ = false;
     /// Project the pair Hessians: after a failed attempt (restore(), on
     /// retry) or a climbing correction (on stall), until the next save().
     bool                                       projecting_this_step_ = false;
@@ -388,6 +395,8 @@ namespace coshell::contact
     void add_shell_force(const Pair &pair, const model::DofBlock &block);
     /// Lists the shell's and the obstacles' edges (constructor).
     void build_edges();
+    /// Forgets the gaps and penetration seen since the last save().
+    void forget_gaps();
     class PairSelector;
     /// Adds the edge-edge pair (two edges, points p and mesh vertex ids)
     /// to the selector if its distance is below 'reach'.

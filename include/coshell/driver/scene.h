@@ -53,6 +53,10 @@ namespace coshell::driver
 
     /// Runs all levels; returns the summary written to summary.json.
     io::Json run(const std::string &output_directory, std::ostream &log);
+    /// Removes the summary.json and convergence.csv of an earlier run from
+    /// 'directory' (if any), so that a run that fails or is refused does
+    /// not leave them looking like its own.
+    static void forget_results(const std::string &directory);
 
     const io::VtuOutput &output() const;
 
