@@ -51,7 +51,8 @@ CASES = {
     "flapping plate (dynamics)": ("dynamics/flapping_plate.prm", []),
     "ISO compression of the lens (dynamics, contact)": ("iol/compression_iso11979.prm", []),
     "IOL fold stage (dynamics, contact)": (
-        "iol/injection.prm", ["Stage 2/Analysis type=none", "Stage 3/Analysis type=none"]),
+        "iol/injection.prm", ["Stage 2/Analysis type=none", "Stage 3/Analysis type=none",
+                               "Stage 4/Analysis type=none"]),
 }
 
 

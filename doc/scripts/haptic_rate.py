@@ -49,7 +49,7 @@ OUT = os.path.join(ROOT, "doc", "performance")
 SCENE = os.path.join(ROOT, "prm", "iol", "injection.prm")
 FOLD_END = 1.3  # s, stage 1 of the scene
 QUIET = ["Parallel/Threads=1", "Output/Write VTU=false",
-         "Stage 3/Analysis type=none"]
+         "Stage 3/Analysis type=none", "Stage 4/Analysis type=none"]
 # The scene's friction in one linear solve per step needs a floor on its
 # smoothing length: with IPC's v dt alone (0.1 mm/s x 1 ms = 1e-4 mm) the
 # linearized lens blew up (membrane strain 3.3; doc/performance.md).

@@ -33,6 +33,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 OUT = os.path.join(ROOT, "doc", "performance")
 FOLD_ONLY = ["Mesh/Gmsh parameters=optic_mesh_size = 0.9, haptic_mesh_size = 0.35",
              "Stage 2/Analysis type=none", "Stage 3/Analysis type=none",
+             "Stage 4/Analysis type=none",
              "Parallel/Threads=1"]
 PARTS = ("detection", "filter", "pair_terms", "elements", "linear_solver", "other")
 

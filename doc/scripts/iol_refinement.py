@@ -16,10 +16,11 @@ iol_refinement.png, stamped with machine and commit.
 
 With --whole the runs are the whole scene instead: the fold, the push
 until the plunger reaches the nozzle's tip (where the folded optic
-passes the nozzle and the force peaks) and the deployment in the bag;
-the rows add the optic's decentration, tilt and shape deviation at rest
-(the Region poses' quantities at the end). Files iol_refinement_whole.csv
-and .png.
+passes the nozzle and the force peaks), the deployment in the bag and
+the settling (stage 4, since 2026-11-29); the rows add the optic's
+decentration, tilt and shape deviation at rest (the Region poses'
+quantities at the end), and their real-time factor is that of stages 1
+to 3. Files iol_refinement_whole.csv and .png.
 
   /usr/bin/python3 doc/scripts/iol_refinement.py --coshell build/coshell \\
       [--meshes 5] [--push 1.0 | --whole] [--timeout 5400]
@@ -73,11 +74,23 @@ def lens_command(sizes, coshell, work, assignments, lens_constants="",
     constants = f"optic_mesh_size = {optic}, haptic_mesh_size = {haptic}"
     if lens_constants:
         constants += ", " + lens_constants
-    stages = [] if deploy else ["Stage 3/Analysis type=none"]
+    stages = [] if deploy else ["Stage 3/Analysis type=none",
+                                "Stage 4/Analysis type=none"]
     for assignment in [f"Mesh/Gmsh parameters={constants}"] + stages + [
             "Parallel/Threads=1"] + assignments:
         command += ["--set", assignment]
     return command, output
+
+
+def surgical_real_time_factor(summary):
+    """Simulated over wall time of stages 1 to 3 (fold, push, deploy):
+    since 2026-11-29 the scene goes on with stage 4, the wait for the lens
+    to settle, whose cheap steps would flatter the whole run's factor."""
+    stages = [s for s in summary.get("dynamic_stages", []) if s["stage"] <= 3]
+    if not stages:
+        return summary["real_time_factor"]
+    return (sum(s["simulated_time_s"] for s in stages) /
+            sum(s["wall_time_s"] for s in stages))
 
 
 def run(sizes, coshell, push, timeout, work):
@@ -113,7 +126,7 @@ def run(sizes, coshell, push, timeout, work):
         "newton_iterations": summary["newton_iterations"],
         "wall_time_s": round(seconds["total"], 1),
         "process_s": round(time.time() - start, 1),
-        "real_time_factor": round(summary["real_time_factor"], 5),
+        "real_time_factor": round(surgical_real_time_factor(summary), 5),
         "ms_per_iteration": round(
             1e3 * seconds["total"] / summary["newton_iterations"], 1),
         "max_bending_strain": round(bending, 5),

@@ -750,7 +750,10 @@ namespace coshell::driver
         advance_dynamic_stage(problem, run.from, run.end(), out.step, on_step,
                               on_iteration, check, run.log);
     finish_dynamic_stage(run, reached);
-    result.dynamic_wall_time_s += seconds_since(wall);
+    const double stage_seconds = seconds_since(wall);
+    result.dynamic_wall_time_s += stage_seconds;
+    result.dynamic_stages.push_back(
+        {run.stage.number, reached - run.from, stage_seconds});
     result.dynamic_assembly_s += problem.assembly_seconds() - assembly_before;
     result.dynamic_linear_solver_s += linear_solver_.seconds() - solver_before;
     result.dynamic_factorization_s +=

@@ -34,6 +34,27 @@ namespace coshell::io
     }
   } // namespace
 
+  namespace
+  {
+    /// Each dynamic stage's number, simulated and wall time (s) and their
+    /// ratio: the real-time factor of one stage alone.
+    Json::Array stage_times_json(const std::vector<DynamicStageTime> &stages)
+    {
+      Json::Array array;
+      for (const auto &stage : stages)
+      {
+        Json entry;
+        entry["stage"]            = stage.stage;
+        entry["simulated_time_s"] = stage.simulated_time_s;
+        entry["wall_time_s"]      = stage.wall_time_s;
+        entry["real_time_factor"] =
+            stage.simulated_time_s / std::max(stage.wall_time_s, 1e-12);
+        array.push_back(entry);
+      }
+      return array;
+    }
+  } // namespace
+
   Json LevelResult::to_json() const
   {
     Json json;
@@ -85,6 +106,7 @@ namespace coshell::io
       // Simulated time over the wall time of the time stepping.
       json["real_time_factor"] =
           simulated_time_s / std::max(dynamic_wall_time_s, 1e-12);
+      json["dynamic_stages"] = stage_times_json(dynamic_stages);
     }
     if (!contact.empty())
       json["contact"] = Json::Object(contact.begin(), contact.end());

@@ -47,7 +47,8 @@ def run(args, formulation):
     run_scene(args.coshell, args.prm, output, args.set + [
         f"Element/Formulation={formulation}",
         f"Stage 1/Duration={args.until}",
-        "Stage 2/Analysis type=none", "Stage 3/Analysis type=none"])
+        "Stage 2/Analysis type=none", "Stage 3/Analysis type=none",
+        "Stage 4/Analysis type=none"])
     return read_rows(os.path.join(output, "time_history.csv"))
 
 

@@ -16,6 +16,14 @@ namespace coshell::io
     double setup = 0, assemble = 0, solve = 0, output = 0, total = 0;
   };
 
+  /// One dynamic stage's simulated time and the wall time it took, both
+  /// in seconds (from a restart's time when the run resumed inside it).
+  struct DynamicStageTime
+  {
+    unsigned int stage            = 0;
+    double       simulated_time_s = 0, wall_time_s = 0;
+  };
+
   /// What one refinement level produced.
   struct LevelResult
   {
@@ -42,6 +50,8 @@ namespace coshell::io
     /// stepping took (s), whose ratio is the real-time factor.
     unsigned int steps            = 0;
     double       simulated_time_s = 0, dynamic_wall_time_s = 0;
+    /// The same per dynamic stage, in the order they ran.
+    std::vector<DynamicStageTime> dynamic_stages;
     /// Kinetic + strain energy at the start of the first dynamic stage
     /// (the reference of "the energy does not grow"); NaN: none.
     double initial_total_energy = std::numeric_limits<double>::quiet_NaN();
