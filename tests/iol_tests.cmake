@@ -344,13 +344,13 @@ coshell_iol_test(iol.fold.corotational_vs_linear check_fold_kinematics.py
 # positive plunger force, and the energy balance with friction's
 # dissipation within 2 % (with friction on the obstacles but not on the
 # rod: 0.13 % remainder, 709 steps, plunger force at most 54.2 mN, 3.3 min
-# on 2026-11-25). Since 2026-11-29 the scene ends with stage 4, 29 s for
+# on 2026-11-25). Since 2026-11-29 the scene ends with stage 4, 90 s for
 # the lens to settle, and the checker asserts the optic at rest (over the
-# last 2 s its decentration moved 0.0002 mm and its tilt 0.09 degrees;
-# at the end of stage 3 it was still turning by 2 degrees/s): decentration
-# 0.19 mm, tilt 0.96 degrees, against 0.49 mm and 21 degrees at the end
-# of the deploy stage. 64 s. Draws the deployment sequence, each panel
-# named by its stage.
+# last 2 s its decentration moved 3e-7 mm and its tilt 3e-4 degrees; at
+# the end of stage 3 it was still turning by 2 degrees/s): decentration
+# 0.193 mm, tilt 0.55 degrees, against 0.49 mm and 21 degrees at the end
+# of the deploy stage. 74 s alone. Draws the deployment sequence, each
+# panel named by its stage.
 coshell_iol_test(iol.injection check_injection.py injection.prm
                  --set ${coarse_lens}
                  --figures ${CMAKE_CURRENT_BINARY_DIR}/output/iol.injection/png)
@@ -362,8 +362,9 @@ coshell_iol_test(iol.injection check_injection.py injection.prm
 # doc/validation.md, "The modified-L lens in the cartridge"). Measured
 # 2026-11-29 before the settling stage: 880 steps, smallest gap 1.1e-5
 # mm, optic 2.63 mm across in the nozzle, plunger force at most 43.6 mN,
-# energy remainder 0.24 %; 75 s. With it: at rest decentration 0.13 mm,
-# tilt 4.5 degrees, the optic vaulted 1.43 mm back; 88 s.
+# energy remainder 0.24 %; 75 s. With the 90 s of settling: at rest
+# decentration 0.13 mm, tilt 4.5 degrees, the optic vaulted 1.43 mm back;
+# 139 s beside iol.injection on the other core.
 coshell_iol_test(iol.injection.modified_l check_injection.py injection.prm
                  --set ${coarse_modified_l}
                  --shape-not-asserted "the modified-L design bends its optic by about 2 % wherever it is held at 10 mm (1.72 % between the ISO clamps, 1.91 % at rest in the bag): a margin too thin to assert")
