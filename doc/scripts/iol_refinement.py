@@ -23,7 +23,7 @@ quantities at the end), and their real-time factor is that of stages 1
 to 3. Files iol_refinement_whole.csv and .png.
 
   /usr/bin/python3 doc/scripts/iol_refinement.py --coshell build/coshell \\
-      [--meshes 5] [--push 1.0 | --whole] [--timeout 5400]
+      [--meshes 5] [--push 1.0 | --whole] [--timeout 5400] [--tag _settled]
 """
 import argparse
 import json
@@ -183,11 +183,16 @@ def main():
     parser.add_argument("--timeout", type=float, default=5400,
                         help="seconds per mesh; finer meshes are skipped "
                         "after one runs out")
+    parser.add_argument("--tag", default="",
+                        help="appended to the files' names (a study that "
+                        "must not replace the last one's)")
     args = parser.parse_args()
     machine, commit = machine_and_commit()
     push = None if args.whole else args.push
-    name = "iol_refinement_whole" if args.whole else "iol_refinement"
-    stages = ("the whole scene (fold, push to the nozzle's tip, deployment)"
+    name = ("iol_refinement_whole" if args.whole else "iol_refinement") + \
+        args.tag
+    stages = ("the whole scene (fold, push to the nozzle's tip, deployment, "
+              "settling)"
               if args.whole else f"stage 1 (fold, 1.3 s) and {args.push:g} "
               "s of stage 2 (push)")
     header = [f"machine: {machine}; commit {commit}",
