@@ -111,6 +111,11 @@ coshell_iol_test(iol.interactive_protocol check_interactive.py
 
 # The coarse lens of the injection's ctests (203 triangles).
 set(coarse_lens "Mesh/Gmsh parameters=optic_mesh_size = 0.9, haptic_mesh_size = 0.35")
+# The injection's fold alone: every later stage off (a new stage of
+# injection.prm goes here, not into each test).
+set(fold_stage_only --set "Stage 2/Analysis type=none"
+                    --set "Stage 3/Analysis type=none"
+                    --set "Stage 4/Analysis type=none")
 # The same scripted session on the injection scene (coarse lens, the
 # first 0.3 s of the fold): 'step' lines with the forces on its 6
 # obstacles (cartridge, plunger, bag, the two wings, the rod) as
@@ -256,18 +261,14 @@ set(frictionless
     --set "Contact/Self contact friction coefficient=0")
 coshell_iol_test(iol.injection.fold check_injection.py injection.prm
                  --set ${coarse_lens}
-                 --set "Stage 2/Analysis type=none"
-                 --set "Stage 3/Analysis type=none"
-                 --set "Stage 4/Analysis type=none"
+                 ${fold_stage_only}
                  --fold-only 3.7
                  --figures ${CMAKE_CURRENT_BINARY_DIR}/output/iol.injection.fold/png)
 # The same fold without friction: the same checks.
 coshell_iol_test(iol.injection.fold.frictionless check_injection.py
                  injection.prm
                  --set ${coarse_lens}
-                 --set "Stage 2/Analysis type=none"
-                 --set "Stage 3/Analysis type=none"
-                 --set "Stage 4/Analysis type=none"
+                 ${fold_stage_only}
                  ${frictionless}
                  --fold-only 3.7)
 # The fold of the modified-L lens (lens.geo haptic_type = 1, coarse):
@@ -277,9 +278,7 @@ set(coarse_modified_l "${coarse_lens}, haptic_type = 1")
 coshell_iol_test(iol.injection.fold.modified_l check_injection.py
                  injection.prm
                  --set ${coarse_modified_l}
-                 --set "Stage 2/Analysis type=none"
-                 --set "Stage 3/Analysis type=none"
-                 --set "Stage 4/Analysis type=none"
+                 ${fold_stage_only}
                  --fold-only 3.7)
 # The fold of a lens whose haptic-optic junctions are rounded (lens.geo
 # junction_fillet = 0.25 mm, coarse: 428 triangles). The rest mesh's
@@ -292,9 +291,7 @@ coshell_iol_test(iol.injection.fold.modified_l check_injection.py
 coshell_iol_test(iol.injection.fold.junction_fillet check_injection.py
                  injection.prm
                  --set "${coarse_lens}, junction_fillet = 0.25"
-                 --set "Stage 2/Analysis type=none"
-                 --set "Stage 3/Analysis type=none"
-                 --set "Stage 4/Analysis type=none"
+                 ${fold_stage_only}
                  --junction-fillet 0.25 --fold-only 3.7)
 # The same for the modified-L lens, whose fillets meet the straight leg
 # (measured by hand: gaps 1.2e-4 mm, optic 3.52 mm across, energy
@@ -303,9 +300,7 @@ coshell_iol_test(iol.injection.fold.junction_fillet check_injection.py
 coshell_iol_test(iol.injection.fold.modified_l.junction_fillet
                  check_injection.py injection.prm
                  --set "${coarse_modified_l}, junction_fillet = 0.25"
-                 --set "Stage 2/Analysis type=none"
-                 --set "Stage 3/Analysis type=none"
-                 --set "Stage 4/Analysis type=none"
+                 ${fold_stage_only}
                  --junction-fillet 0.25 --haptic-type 1 --fold-only 3.7)
 # The filleted coarse lens refined at its junctions (lens.geo
 # junction_mesh_size = 0.175 mm, half the coarse haptic's size, within
@@ -318,9 +313,7 @@ coshell_iol_test(iol.injection.fold.modified_l.junction_fillet
 coshell_iol_test(iol.injection.fold.junction_refined check_injection.py
                  injection.prm
                  --set "${coarse_lens}, junction_fillet = 0.25, junction_mesh_size = 0.175, junction_mesh_radius = 0.15"
-                 --set "Stage 2/Analysis type=none"
-                 --set "Stage 3/Analysis type=none"
-                 --set "Stage 4/Analysis type=none"
+                 ${fold_stage_only}
                  --junction-fillet 0.25 --junction-refined 0.175 0.15
                  --fold-only 3.7)
 # Co-rotational against linear kinematics on the same fold, to t = 0.6 s

@@ -125,9 +125,7 @@ coshell_mpi_test(self_contact_rollup_statics_mumps
 # effect, not a rank effect; the tolerance is not changed.
 coshell_mpi_test(iol_fold_mumps iol/injection.prm amesos-mumps
                  --set "Mesh/Gmsh parameters=optic_mesh_size = 0.9, haptic_mesh_size = 0.35"
-                 --set "Stage 2/Analysis type=none"
-                 --set "Stage 3/Analysis type=none"
-                 --set "Stage 4/Analysis type=none"
+                 ${fold_stage_only}  # iol_tests.cmake's
                  --set "Nonlinear solver/Tangent=consistent"
                  --iterate-tolerance 1e-8)
 

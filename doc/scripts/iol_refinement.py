@@ -38,7 +38,7 @@ from doc_common import (ROOT, finish_plot, largest_strains,  # noqa: E402
                         machine_and_commit, write_csv)
 sys.path.insert(0, os.path.join(ROOT, "tests", "scripts"))
 from check_injection import plunger_rows, travel_measures  # noqa: E402
-from scene_runner import read_rows  # noqa: E402
+from scene_runner import read_rows, surgical_real_time_factor  # noqa: E402
 
 import matplotlib  # noqa: E402
 matplotlib.use("Agg")
@@ -80,17 +80,6 @@ def lens_command(sizes, coshell, work, assignments, lens_constants="",
             "Parallel/Threads=1"] + assignments:
         command += ["--set", assignment]
     return command, output
-
-
-def surgical_real_time_factor(summary):
-    """Simulated over wall time of stages 1 to 3 (fold, push, deploy):
-    since 2026-11-29 the scene goes on with stage 4, the wait for the lens
-    to settle, whose cheap steps would flatter the whole run's factor."""
-    stages = [s for s in summary.get("dynamic_stages", []) if s["stage"] <= 3]
-    if not stages:
-        return summary["real_time_factor"]
-    return (sum(s["simulated_time_s"] for s in stages) /
-            sum(s["wall_time_s"] for s in stages))
 
 
 def run(sizes, coshell, push, timeout, work):

@@ -56,7 +56,8 @@ import sys
 import numpy as np
 
 from scene_runner import (add_scene_arguments, energy_balance, exit_with,
-                          force_file_check, read_rows, run_contact_scene)
+                          force_file_check, read_rows, run_contact_scene,
+                          surgical_real_time_factor)
 
 SCRIPTS = os.path.dirname(os.path.abspath(__file__))
 RENDER = os.path.join(SCRIPTS, "..", "..", "doc", "scripts", "render_vtu.py")
@@ -603,12 +604,9 @@ def print_stage_speeds(summary):
         print(f"stage {stage['stage']}: {stage['simulated_time_s']:.4g} s "
               f"simulated in {stage['wall_time_s']:.4g} s, real-time factor "
               f"{stage['real_time_factor']:.3g}")
-    surgical = [s for s in stages if s["stage"] <= 3]
-    if surgical:
-        simulated = sum(s["simulated_time_s"] for s in surgical)
-        wall = sum(s["wall_time_s"] for s in surgical)
+    if stages:
         print(f"stages 1 to 3 (the injection without the settling): "
-              f"real-time factor {simulated / wall:.3g}")
+              f"real-time factor {surgical_real_time_factor(summary):.3g}")
 
 
 def main():
