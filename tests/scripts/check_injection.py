@@ -595,6 +595,20 @@ def take_nozzle_from_run(args):
           f"{args.nozzle_start:g} to {args.nozzle_tip:g} mm")
 
 
+def check_stage_times(checks, summary):
+    """summary.json's dynamic_stages add up: their simulated times to
+    simulated_time_s, their wall times to the time stepping's total."""
+    stages = summary.get("dynamic_stages", [])
+    simulated = sum(s["simulated_time_s"] for s in stages)
+    wall = sum(s["wall_time_s"] for s in stages)
+    total = summary["time_stepping_s"]["total"]
+    checks("the dynamic stages' simulated and wall times add up to the "
+           "run's (1e-9 and 1e-6 relative)", bool(stages)
+           and abs(simulated - summary["simulated_time_s"])
+           <= 1e-9 * summary["simulated_time_s"]
+           and abs(wall - total) <= 1e-6 * total)
+
+
 def print_stage_speeds(summary):
     """The real-time factor of each dynamic stage, and of the surgical
     scene, stages 1 to 3 (fold, push, deploy), without the wait for the
@@ -635,6 +649,7 @@ def main():
           f"{summary['steps']} steps, {summary['newton_iterations']} Newton "
           "iterations)")
     print_stage_speeds(summary)
+    check_stage_times(checks, summary)
     if args.figures:
         plot(args, history, time, displacement, push, chord)
         render_figures(checks, args, history, chord, frames)
