@@ -361,6 +361,38 @@ coshell_iol_test(iol.injection check_injection.py injection.prm
 coshell_iol_test(iol.injection.modified_l check_injection.py injection.prm
                  --set ${coarse_modified_l}
                  --shape-not-asserted "the modified-L design bends its optic by about 2 % wherever it is held at 10 mm (1.72 % between the ISO clamps, 1.91 % at rest in the bag): a margin too thin to assert")
+# A harder case: the whole injection of the coarse lens through a 3.3 mm
+# nozzle instead of 3.5 (Constants/Changes, which the cartridge, the
+# plunger and the bag's opening follow), every check of iol.injection,
+# the optic's fold now within the narrower bore. The plunger (3.2 mm)
+# still leaves less room beside it in the 4 mm chamber (0.4 mm) than the
+# haptic's thickness (0.45 mm), so the trailing haptic stays ahead of it;
+# at 3.0 mm it slides beside the plunger and is pinched where the taper
+# begins (doc/validation.md, "How narrow a nozzle the lens passes").
+# Measured 2026-11-29 (stages 1 to 3): 660 steps, optic rim-to-rim at
+# most 2.29 mm in the nozzle, plunger force at most 81.8 mN (54.8 mN over
+# 0.5 mm of travel, 36.1 through 3.5 mm).
+# 124 s beside two other runs (long: iol.injection.sleeve_plunger below
+# runs a narrower bore in the default suite).
+coshell_iol_test(iol.injection.narrow_nozzle check_injection.py injection.prm
+                 --set ${coarse_lens}
+                 --set "Constants/Changes=nozzle_radius = 1.65")
+set_tests_properties(iol.injection.narrow_nozzle PROPERTIES LABELS "iol;long")
+# Narrower still, with the plunger's sleeve (injection.prm's Contact/
+# Obstacle 7, switched on by its mesh): the whole injection of the coarse
+# lens through a 2.8 mm nozzle, every check of iol.injection, the fold
+# within the 2.8 mm bore. The sleeve fills the 4 mm chamber and stops in
+# the taper (sleeve_stop, 9.75 mm here) while the 2.7 mm plunger goes on;
+# without it the trailing haptic jams beside the plunger from 3.1 mm down
+# (doc/validation.md, "How narrow a nozzle the lens passes"). Also checks
+# the sleeve's sleeve_force.csv. Measured 2026-11-29: the optic's rims
+# 1.17 mm apart at most in the nozzle, the plunger's force at most 92.3
+# mN and the sleeve's 126.7 mN, energy remainder 0.26 %, at rest 0.28 mm
+# decentred and tilted 8.6 degrees; 89 s beside another run.
+coshell_iol_test(iol.injection.sleeve_plunger check_injection.py injection.prm
+                 --set ${coarse_lens}
+                 --set "Constants/Changes=nozzle_radius = 1.4"
+                 --set "Contact/Obstacle 7/Mesh file=../../meshes/contact/plunger.geo")
 # The whole injection at the slow end of real injectors, 1.5 mm/s (the
 # scene's 5 mm/s is the fast end): Constants/Values derives push_time and
 # the push stage's duration from plunger_speed, so the plunger makes the

@@ -148,7 +148,9 @@ def run(radius, lens, coshell, work, timeout, sleeve):
             }, curve
 
 
-def plot(rows, curves, title, path):
+def plot(rows, curves, title, path, pusher="plunger"):
+    """The force and the optic's chord against the bore, and the force
+    against the travel; 'pusher' names what the force is of."""
     figure, axes = plt.subplots(1, 3, figsize=(13, 3.8))
     through = [r for r in rows if r["status"] == "through"]
     bores = [r["nozzle_diameter_mm"] for r in through]
@@ -162,7 +164,7 @@ def plot(rows, curves, title, path):
         for ax in axes[:2]:
             ax.axvline(row["nozzle_diameter_mm"], color="C3", ls="--",
                        label=f"{row['nozzle_diameter_mm']:g} mm: {what}")
-    axes[0].set_ylabel("largest plunger force over 0.5 mm (mN)")
+    axes[0].set_ylabel(f"largest {pusher} force over 0.5 mm (mN)")
     bores = sorted(r["nozzle_diameter_mm"] for r in rows)
     axes[1].plot(bores, bores, "k:", label="the bore")
     axes[1].set_ylabel("largest rim-to-rim chord in the nozzle (mm)")
@@ -179,7 +181,7 @@ def plot(rows, curves, title, path):
     if peaks:  # a jam's barrier force runs to 1e6 N: show the passages
         axes[2].set_ylim(0, 1.3 * max(peaks))
     axes[2].set_xlabel("plunger travel (mm)")
-    axes[2].set_ylabel("plunger force (mN)")
+    axes[2].set_ylabel(f"{pusher} force (mN)")
     for ax in axes:
         ax.grid(True, alpha=0.3)
         ax.legend(fontsize=7)
@@ -187,6 +189,10 @@ def plot(rows, curves, title, path):
     figure.tight_layout(rect=(0, 0, 1, 0.95))
     figure.savefig(path, dpi=110)
     print("wrote", path)
+
+
+def pusher(sleeve):
+    return "plunger and sleeve" if sleeve else "plunger"
 
 
 def write_curves(path, rows, curves, header):
@@ -249,11 +255,13 @@ def main():
     if args.replot:
         with open(os.path.join(OUT, name + ".csv")) as f:
             stamp = f.readline()[2:].strip().replace("machine: ", "")
-            lens = re.search(r"lens sizes (\S+) mm", f.readline())
+            setting = f.readline()
+        lens = re.search(r"lens sizes (\S+) mm", setting)
         rows, curves = read_study(name)
         plot(rows, curves, "IOL injection against the nozzle's bore, lens "
              f"{lens.group(1) if lens else '?'} mm ({stamp})",
-             os.path.join(OUT, name + ".png"))
+             os.path.join(OUT, name + ".png"), pusher(
+                 "sleeve on" in setting))
         return
     machine, commit = machine_and_commit()
     header = [f"machine: {machine}; commit {commit}",
@@ -280,7 +288,7 @@ def main():
                          curves, header)
     plot(rows, curves, f"IOL injection against the nozzle's bore, lens "
          f"{args.lens[0]:g}/{args.lens[1]:g} mm ({machine}, {commit})",
-         os.path.join(OUT, name + ".png"))
+         os.path.join(OUT, name + ".png"), pusher(args.sleeve))
 
 
 if __name__ == "__main__":

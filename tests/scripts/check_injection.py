@@ -37,7 +37,9 @@ energy and the optic's width at the end (<= WIDTH) are checked and the
 folded lens is drawn.
 
 Checks coshell's plunger_force.csv (time, plunger_displacement, force_n)
-against contact_forces.csv and, with --figures, writes the PNGs: the
+against contact_forces.csv, and so the plunger's sleeve's
+sleeve_force.csv where the scene has the sleeve on, and, with --figures,
+writes the PNGs: the
 plunger force against its travel, the plunger force, strains and
 smallest gap against time, the folded lens (the paper's Fig. 4) and the
 deployment sequence.
@@ -71,6 +73,9 @@ def parse_arguments():
     add_scene_arguments(parser)
     parser.add_argument("--plunger", type=int, default=2,
                         help="the plunger's obstacle number")
+    parser.add_argument("--sleeve", type=int, default=7,
+                        help="the plunger's sleeve's obstacle number, "
+                        "checked when its sleeve_force.csv exists")
     parser.add_argument("--nozzle-radius", type=float,
                         help="inner, mm (default: the run's constant "
                         "nozzle_radius, see NOZZLE)")
@@ -185,6 +190,22 @@ def check_force_file_work(checks, output, work):
            "(1 %)", abs(trapezoids - work) <= 0.01 * abs(work))
 
 
+def check_sleeve_force(checks, forces, args, output):
+    """With the plunger's sleeve on (injection.prm's Contact/Obstacle 7),
+    its sleeve_force.csv against its rows of contact_forces.csv, and its
+    largest push."""
+    if not os.path.exists(os.path.join(output, "sleeve_force.csv")):
+        return
+    ok, sentence = force_file_check(output, "sleeve_force.csv", args.sleeve,
+                                    (1, 0, 0), "plunger_sleeve_displacement")
+    print(sentence)
+    checks("coshell's sleeve_force.csv has the sleeve's rows of "
+           "contact_forces.csv", ok)
+    _, _, _, push, work = plunger_rows(forces, args.sleeve)
+    print(f"plunger's sleeve: largest force {1e3 * push.max():.4g} mN, "
+          f"work {work[-1]:.5g} N mm")
+
+
 def check_plunger_force(checks, forces, args, output):
     _, time, displacement, push, work_so_far = plunger_rows(
         forces, args.plunger)
@@ -193,6 +214,7 @@ def check_plunger_force(checks, forces, args, output):
     print(sentence)
     checks("coshell's plunger_force.csv (time,plunger_displacement,force_n) "
            "has the plunger's rows of contact_forces.csv", ok)
+    check_sleeve_force(checks, forces, args, output)
     largest = push.max() if len(push) else math.nan
     print(f"plunger: largest force {1e3 * largest:.4g} mN, travel "
           f"{displacement.max():.4g} mm")
@@ -367,7 +389,8 @@ def check_energy(checks, history, forces, args):
     plunger = works.get(args.plunger, 0.0)
     remainder = energies["remainder"]
     supplied = sum(works.values()) + energies["external_work"]
-    print("energy (N mm): plunger work {:.5g}, other obstacles (wings, rod) "
+    print("energy (N mm): plunger work {:.5g}, other obstacles (wings, rod, "
+          "the sleeve if on) "
           "{:.4g}, external {external_work:.3g}; strain {strain_energy:.5g}, "
           "kinetic {kinetic_energy:.3g}, drag, damping and friction "
           "{dissipated_energy:.5g}, barrier {contact_energy:.3g}; remainder "
@@ -376,7 +399,7 @@ def check_energy(checks, history, forces, args):
               100 * remainder / supplied, **energies))
     tolerance = args.energy_tolerance * supplied
     checks(f"energy balance within {100 * args.energy_tolerance:g} % of "
-           "the work the plunger, wings and rod supplied",
+           "the work the plunger, wings and rod (and the sleeve) supplied",
            abs(remainder) <= tolerance)
 
 
