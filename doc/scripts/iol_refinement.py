@@ -20,18 +20,22 @@ passes the nozzle and the force peaks), the deployment in the bag and
 the settling (stage 4, since 2026-11-29); the rows add the optic's
 decentration, tilt and shape deviation at rest (the Region poses'
 quantities at the end), and their real-time factor is that of stages 1
-to 3. Files iol_refinement_whole.csv and .png.
+to 3. Files iol_refinement_whole.csv and .png, whose fourth panel is the
+rest pose against the mesh. --replot redraws a study's PNG from its CSV.
 
   /usr/bin/python3 doc/scripts/iol_refinement.py --coshell build/coshell \\
       [--meshes 5] [--push 1.0 | --whole] [--timeout 5400] [--tag _settled]
+      [--replot]
 """
 import argparse
+import csv
 import json
 import os
 import subprocess
 import sys
 import tempfile
 import time
+import warnings
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from doc_common import (ROOT, finish_plot, largest_strains,  # noqa: E402
@@ -129,8 +133,10 @@ def run(sizes, coshell, push, timeout, work):
 
 
 def plot(rows, push, commit, name):
-    figure, axes = plt.subplots(1, 3, figsize=(11, 3.6))
     rows = [r for r in rows if r["status"] == "ok"]
+    at_rest = push is None and all("tilt_degrees" in r for r in rows)
+    figure, axes = plt.subplots(1, 4 if at_rest else 3,
+                                figsize=(14.5 if at_rest else 11, 3.6))
     triangles = [r["triangles"] for r in rows]
     series = [
         (axes[0], [("max_plunger_force_mn", "largest"),
@@ -154,11 +160,47 @@ def plot(rows, push, commit, name):
         ax.grid(True, which="both", alpha=0.3)
         ax.legend(fontsize=7)
     axes[2].set_yscale("log")
+    if at_rest:
+        plot_rest_pose(axes[3], triangles, rows)
     run = ("IOL injection, the whole scene" if push is None
            else f"IOL fold and {push:g} s of push")
     finish_plot(figure, axes[1], "lens triangles", "largest strain",
                 f"{run}, refinement ({commit})",
                 os.path.join(OUT, name + ".png"))
+
+
+def plot_rest_pose(ax, triangles, rows):
+    """The optic's decentration (mm) and tilt (degrees) at the run's end,
+    at rest after the settling."""
+    ax.set_xscale("log")  # before the twin, which shares the x axis
+    ax.plot(triangles, [float(r["decentration_mm"]) for r in rows], "o-",
+            color="C0", label="decentration (mm)")
+    ax.set_ylabel("decentration at rest (mm)")
+    tilt = ax.twinx()
+    tilt.plot(triangles, [float(r["tilt_degrees"]) for r in rows], "s--",
+              color="C3", label="tilt (degrees)")
+    tilt.set_ylabel("tilt at rest (degrees)")
+    # Clearing the figure resets the twin's shared log axis through 0,
+    # which matplotlib reports; the drawn figure is not affected.
+    warnings.filterwarnings("ignore", "Attempt to set non-positive xlim")
+    ax.set_xlabel("lens triangles")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(handles=ax.get_lines() + tilt.get_lines(), fontsize=7)
+
+
+def read_rows_written(name):
+    """The rows of a study's CSV (after its '#' lines), numbers as
+    numbers, for --replot."""
+    with open(os.path.join(OUT, name + ".csv")) as f:
+        lines = [line for line in f if not line.startswith("#")]
+    rows = list(csv.DictReader(lines))
+    for row in rows:
+        for key, value in row.items():
+            try:
+                row[key] = float(value)
+            except ValueError:
+                pass
+    return rows
 
 
 def main():
@@ -175,11 +217,18 @@ def main():
     parser.add_argument("--tag", default="",
                         help="appended to the files' names (a study that "
                         "must not replace the last one's)")
+    parser.add_argument("--replot", action="store_true",
+                        help="redraw the PNG from the study's CSV")
     args = parser.parse_args()
     machine, commit = machine_and_commit()
     push = None if args.whole else args.push
     name = ("iol_refinement_whole" if args.whole else "iol_refinement") + \
         args.tag
+    if args.replot:
+        with open(os.path.join(OUT, name + ".csv")) as f:
+            commit = f.readline().split("commit ")[-1].strip()
+        plot(read_rows_written(name), push, commit, name)
+        return
     stages = ("the whole scene (fold, push to the nozzle's tip, deployment, "
               "settling)"
               if args.whole else f"stage 1 (fold, 1.3 s) and {args.push:g} "
