@@ -73,6 +73,14 @@ def write_csv(path, rows, header_lines, fields=None):
     print("wrote", path)
 
 
+def read_csv(path):
+    """The rows (dicts of strings) of a CSV file that write_csv wrote,
+    after its '#' provenance lines."""
+    with open(path) as f:
+        return list(csv.DictReader(line for line in f
+                                   if not line.startswith("#")))
+
+
 def largest_strains(output):
     """The largest bending and membrane strains over a run's steps
     (time_history.csv, Quantities of interest/Largest strains = true)."""

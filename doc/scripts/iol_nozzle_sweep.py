@@ -22,7 +22,6 @@ commit; --replot redraws the PNG from the two CSV files.
       [--radii 1.9 1.75 1.6] [--lens 0.55 0.22] [--tag _coarse] [--replot]
 """
 import argparse
-import csv
 import json
 import os
 import re
@@ -33,10 +32,12 @@ import tempfile
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from doc_common import ROOT, machine_and_commit, write_csv  # noqa: E402
+from doc_common import (ROOT, machine_and_commit, read_csv,  # noqa: E402
+                        write_csv)
 sys.path.insert(0, os.path.join(ROOT, "tests", "scripts"))
-from check_injection import (column, plunger_rows,  # noqa: E402
-                             rim_chord, travel_measures)
+from check_injection import (TRAILING_END_X, column,  # noqa: E402
+                             optic_in_nozzle, plunger_rows, rim_chord,
+                             travel_measures)
 from iol_refinement import OUT, PLUNGER, lens_command  # noqa: E402
 from scene_runner import read_rows, surgical_real_time_factor  # noqa: E402
 
@@ -47,7 +48,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 # injection.prm's constants the checks need (mm): the nozzle runs from
 # nozzle_start to nozzle_tip, the chamber's inner radius is the wings'.
 NOZZLE_START, NOZZLE_TIP, CHAMBER_RADIUS = 11.5, 15.0, 2.0
-PLUNGER_CLEARANCE, TRAILING_END = 0.05, -6.3
+PLUNGER_CLEARANCE = 0.05
 # The plunger's sleeve is Contact/Obstacle 7, off unless its mesh is set.
 SLEEVE = 7
 SLEEVE_ON = "Contact/Obstacle 7/Mesh file=../../meshes/contact/plunger.geo"
@@ -87,10 +88,7 @@ def path_measures(output, sleeve):
     plunger's, with the sleeve the plunger's and the sleeve's)."""
     history = finished_or_partial(output, "time_history.csv")
     centre = column(history, "optic_ux")
-    in_nozzle = (centre > NOZZLE_START) & (centre < NOZZLE_TIP)
-    for rim in ("rim_yp_ux", "rim_ym_ux"):
-        x = column(history, rim)
-        in_nozzle &= (x > NOZZLE_START) & (x < NOZZLE_TIP)
+    in_nozzle = optic_in_nozzle(history, NOZZLE_START, NOZZLE_TIP)
     chord = rim_chord(history)
     forces = finished_or_partial(output, "contact_forces.csv")
     displacement, push, work_so_far = pushing_forces(forces, sleeve)
@@ -101,7 +99,7 @@ def path_measures(output, sleeve):
         if in_nozzle.any() else "",
         "optic_centre_max_x_mm": round(float(centre.max()), 3),
         "trailing_end_max_x_mm": round(
-            TRAILING_END + float(column(history, "trail_ux").max()), 3),
+            TRAILING_END_X + float(column(history, "trail_ux").max()), 3),
         "max_plunger_force_mn": round(1e3 * float(push.max()), 3),
         "max_plunger_force_over_0.5mm_mn": round(1e3 * averaged, 3),
         "push_work_nmm": round(work, 5),
@@ -205,22 +203,15 @@ def write_curves(path, rows, curves, header):
     write_csv(path, table, header)
 
 
-def read_commented_csv(path):
-    """The rows of a CSV file after its '#' provenance lines."""
-    with open(path) as f:
-        return list(csv.DictReader(line for line in f
-                                   if not line.startswith("#")))
-
-
 def read_study(name):
     """The rows and the force curves a sweep wrote, for --replot."""
-    rows = read_commented_csv(os.path.join(OUT, name + ".csv"))
+    rows = read_csv(os.path.join(OUT, name + ".csv"))
     for row in rows:
         row["nozzle_diameter_mm"] = float(row["nozzle_diameter_mm"])
         for key in ("failed_at_s", "max_plunger_force_over_0.5mm_mn",
                     "optic_width_in_nozzle_mm"):
             row[key] = float(row[key]) if row[key] else ""
-    points = read_commented_csv(os.path.join(OUT, name + "_force.csv"))
+    points = read_csv(os.path.join(OUT, name + "_force.csv"))
     curves = []
     for row in rows:
         mine = [p for p in points if float(p["nozzle_diameter_mm"]) ==

@@ -28,7 +28,6 @@ rest pose against the mesh. --replot redraws a study's PNG from its CSV.
       [--replot]
 """
 import argparse
-import csv
 import json
 import os
 import subprocess
@@ -39,7 +38,7 @@ import warnings
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from doc_common import (ROOT, finish_plot, largest_strains,  # noqa: E402
-                        machine_and_commit, write_csv)
+                        machine_and_commit, read_csv, write_csv)
 sys.path.insert(0, os.path.join(ROOT, "tests", "scripts"))
 from check_injection import plunger_rows, travel_measures  # noqa: E402
 from scene_runner import read_rows, surgical_real_time_factor  # noqa: E402
@@ -191,9 +190,7 @@ def plot_rest_pose(ax, triangles, rows):
 def read_rows_written(name):
     """The rows of a study's CSV (after its '#' lines), numbers as
     numbers, for --replot."""
-    with open(os.path.join(OUT, name + ".csv")) as f:
-        lines = [line for line in f if not line.startswith("#")]
-    rows = list(csv.DictReader(lines))
+    rows = read_csv(os.path.join(OUT, name + ".csv"))
     for row in rows:
         for key, value in row.items():
             try:

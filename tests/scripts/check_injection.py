@@ -62,6 +62,9 @@ from scene_runner import (add_scene_arguments, energy_balance, exit_with,
                           surgical_real_time_factor)
 
 SCRIPTS = os.path.dirname(os.path.abspath(__file__))
+# x of the trailing haptic's end at rest (mm), injection.prm's trail_ux
+# point.
+TRAILING_END_X = -6.3
 RENDER = os.path.join(SCRIPTS, "..", "..", "doc", "scripts", "render_vtu.py")
 sys.path.insert(0, os.path.dirname(RENDER))
 import render_vtu  # noqa: E402
@@ -234,20 +237,24 @@ def check_plunger_force(checks, forces, args, output):
     return time, displacement, push
 
 
-def inside_nozzle(x, args):
-    return (x > args.nozzle_start) & (x < args.nozzle_tip)
+def optic_in_nozzle(history, start, tip):
+    """Per step, whether the optic's centre and both rim points (at x = 0
+    at rest) lie inside the nozzle, from x = start to tip (mm): as the
+    centre reaches the tip a rim point may already be out and opening
+    (x = 16.7 at the tip in a frictionless run), and earlier one may still
+    be in the taper."""
+    inside = np.ones(len(history), dtype=bool)
+    for point in ("optic_ux", "rim_yp_ux", "rim_ym_ux"):
+        x = column(history, point)
+        inside &= (x > start) & (x < tip)
+    return inside
 
 
 def check_fold_and_exit(checks, history, args):
     chord = rim_chord(history)
     centre_x = column(history, "optic_ux")
-    # The width counts while the centre and both rim points are inside the
-    # nozzle: as the centre reaches the tip, a rim point may already be out
-    # and opening (x = 16.7 at the tip in a frictionless run), and earlier
-    # one may still be in the taper.
-    in_nozzle = inside_nozzle(centre_x, args)
-    for rim in ("rim_yp_ux", "rim_ym_ux"):
-        in_nozzle &= inside_nozzle(column(history, rim), args)
+    # The width counts while the centre and both rim points are inside.
+    in_nozzle = optic_in_nozzle(history, args.nozzle_start, args.nozzle_tip)
     folded = chord[in_nozzle].max() if in_nozzle.any() else math.inf
     print(f"optic width across the axis: {chord[0]:.4g} mm at rest, at most "
           f"{folded:.4g} mm while its centre and rim are in the nozzle "
@@ -261,7 +268,7 @@ def check_fold_and_exit(checks, history, args):
               and centre_x.max() > args.nozzle_tip)
     checks("the optic folds to the nozzle's diameter and its centre passes "
            "the nozzle", passes and folded <= 2 * args.nozzle_radius)
-    trailing = -6.3 + column(history, "trail_ux")
+    trailing = TRAILING_END_X + column(history, "trail_ux")
     print(f"trailing haptic's end: x = {trailing.max():.4g} mm at most "
           f"(nozzle tip {args.nozzle_tip} mm)")
     checks("the whole lens leaves the nozzle's tip",
