@@ -389,10 +389,13 @@ set_tests_properties(iol.injection.narrow_nozzle PROPERTIES LABELS "iol;long")
 # 1.17 mm apart at most in the nozzle, the plunger's force at most 92.3
 # mN and the sleeve's 126.7 mN, energy remainder 0.26 %, at rest 0.28 mm
 # decentred and tilted 8.6 degrees; 89 s beside another run.
+# The sleeves are switched on by their meshes (injection.prm).
+set(sleeve_on --set "Contact/Obstacle 7/Mesh file=../../meshes/contact/plunger.geo")
+set(inner_sleeve_on --set "Contact/Obstacle 8/Mesh file=../../meshes/contact/plunger.geo")
 coshell_iol_test(iol.injection.sleeve_plunger check_injection.py injection.prm
                  --set ${coarse_lens}
                  --set "Constants/Changes=nozzle_radius = 1.4"
-                 --set "Contact/Obstacle 7/Mesh file=../../meshes/contact/plunger.geo")
+                 ${sleeve_on})
 # The default lens (480 triangles) through 2.4 mm with both sleeves
 # (injection.prm's Contact/Obstacles 7 and 8): every check of
 # iol.injection. The bore's area is 1.2 times the optic's section; at
@@ -403,8 +406,7 @@ coshell_iol_test(iol.injection.sleeve_plunger check_injection.py injection.prm
 # 0.13 mm decentred and tilted 0.43 degrees; 183 s of time stepping.
 coshell_iol_test(iol.injection.two_sleeves check_injection.py injection.prm
                  --set "Constants/Changes=nozzle_radius = 1.2"
-                 --set "Contact/Obstacle 7/Mesh file=../../meshes/contact/plunger.geo"
-                 --set "Contact/Obstacle 8/Mesh file=../../meshes/contact/plunger.geo")
+                 ${sleeve_on} ${inner_sleeve_on})
 set_tests_properties(iol.injection.two_sleeves PROPERTIES LABELS "iol;long")
 # The whole injection at the slow end of real injectors, 1.5 mm/s (the
 # scene's 5 mm/s is the fast end): Constants/Values derives push_time and
