@@ -25,7 +25,11 @@ rest pose against the mesh. --replot redraws a study's PNG from its CSV.
 
   /usr/bin/python3 doc/scripts/iol_refinement.py --coshell build/coshell \\
       [--meshes 5] [--push 1.0 | --whole] [--timeout 5400] [--tag _settled]
-      [--replot]
+      [--replot] [--resume 4]
+
+--resume K keeps the first K rows of the study's CSV and runs the meshes
+from the K+1-th on, for a finest lens that did not fit in the first run's
+time; the header then names both commits.
 """
 import argparse
 import json
@@ -193,11 +197,23 @@ def read_rows_written(name):
     rows = read_csv(os.path.join(OUT, name + ".csv"))
     for row in rows:
         for key, value in row.items():
-            try:
-                row[key] = float(value)
-            except ValueError:
-                pass
+            for number in (int, float):
+                try:
+                    row[key] = number(value)
+                    break
+                except ValueError:
+                    pass
     return rows
+
+
+def resumed_study(name, kept, commit):
+    """The header and first 'kept' rows of a study's CSV, to which the
+    finer meshes' rows are added; the header names both commits."""
+    with open(os.path.join(OUT, name + ".csv")) as f:
+        written = [line[2:].rstrip("\n") for line in f
+                   if line.startswith("# ")]
+    written[0] += f" (the first {kept} rows); commit {commit} (the rest)"
+    return written, read_rows_written(name)[:kept]
 
 
 def main():
@@ -216,6 +232,9 @@ def main():
                         "must not replace the last one's)")
     parser.add_argument("--replot", action="store_true",
                         help="redraw the PNG from the study's CSV")
+    parser.add_argument("--resume", type=int, default=0,
+                        help="keep this many rows of the study's CSV and "
+                        "run the finer meshes only")
     args = parser.parse_args()
     machine, commit = machine_and_commit()
     push = None if args.whole else args.push
@@ -234,9 +253,11 @@ def main():
               f"prm/iol/injection.prm: {stages}, Parallel/Threads = 1, "
               "OPENBLAS_NUM_THREADS = 1; meshes one after another"]
     rows = []
+    if args.resume:
+        header, rows = resumed_study(name, args.resume, commit)
     os.makedirs(OUT, exist_ok=True)
     with tempfile.TemporaryDirectory() as work:
-        for sizes in MESHES[:args.meshes]:
+        for sizes in MESHES[args.resume:args.meshes]:
             try:
                 rows.append(run(sizes, os.path.abspath(args.coshell),
                                 push, args.timeout, work))
