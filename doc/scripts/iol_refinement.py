@@ -170,6 +170,37 @@ def plot(rows, push, commit, name):
     finish_plot(figure, axes[1], "lens triangles", "largest strain",
                 f"{run}, refinement ({commit})",
                 os.path.join(OUT, name + ".png"))
+    plot_speed_against_error(rows, f"{run} ({commit})", name)
+
+
+# The measures whose refinement converges, against the finest lens: the
+# peaks of strain and force are left out, since the sharp junction's
+# strain grows without bound and the raw force peak is a stick-slip sample.
+CONVERGING = [("max_plunger_force_over_0.5mm_mn", "force over 0.5 mm"),
+              ("push_work_nmm", "work of the push")]
+
+
+def plot_speed_against_error(rows, title, name):
+    """Each coarser lens's difference from the finest one (relative, of
+    the converging measures) against its real-time factor: what a lens
+    costs against how far it is off (name_speed_error.png)."""
+    finest, coarser = rows[-1], rows[:-1]
+    if not coarser:
+        return
+    figure, ax = plt.subplots(figsize=(5.5, 3.8))
+    speed = [r["real_time_factor"] for r in coarser]
+    for column, label in CONVERGING:
+        reference = float(finest[column])
+        errors = [abs(float(r[column]) / reference - 1) for r in coarser]
+        ax.plot(speed, errors, "o-", label=label)
+        for row, x, y in zip(coarser, speed, errors):
+            ax.annotate(f"{row['triangles']}", (x, y), fontsize=7,
+                        xytext=(3, 3), textcoords="offset points")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    finish_plot(figure, ax, "real-time factor (1 thread)",
+                f"relative difference from {finest['triangles']} triangles",
+                title, os.path.join(OUT, name + "_speed_error.png"))
 
 
 def plot_rest_pose(ax, triangles, rows):
