@@ -12,8 +12,10 @@ fold is run once, in the scene's
 mode, and written as a checkpoint; each mode restarts from it for --push
 seconds at a fixed step. Per mode: steps per second, the per-step split
 (assembly with contact, linear solver, the rest), contact detection per
-step, the smallest gap (negative: penetration), the largest strains and
-the plunger's travel. A mode counts as working ("ok") only if its plunger
+step, the smallest gap (negative: penetration), the largest strains,
+the plunger's travel, and the accuracy side: the push's work on the lens
+and its largest force over 0.5 mm of travel, the work also relative to
+the scene's mode. A mode counts as working ("ok") only if its plunger
 travelled as far as in the scene's mode and its largest membrane strain
 stayed below twice that mode's: a lens that blew up, or a plunger held
 back while the scene stood still, is reported as such, not as a rate.
@@ -40,6 +42,8 @@ import tempfile
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from doc_common import (ROOT, finish_plot, largest_strains,  # noqa: E402
                         machine_and_commit, write_csv)
+sys.path.insert(0, os.path.join(ROOT, "tests", "scripts"))
+from check_injection import push_measures  # noqa: E402
 
 import matplotlib  # noqa: E402
 matplotlib.use("Agg")
@@ -131,6 +135,15 @@ def plunger_rows(output):
                 if r["obstacle"] == PLUNGER and float(r["time"]) > FOLD_END]
 
 
+def accuracy(plunger):
+    """The push's work on the lens (N mm) and its largest force averaged
+    over 0.5 mm of travel (mN): the accuracy side of a mode, against the
+    scene's mode."""
+    total, averaged = push_measures(plunger)
+    return {"push_work_nmm": round(total, 9),
+            "force_over_0.5mm_mn": round(1e3 * averaged, 4)}
+
+
 def measure(binary, checkpoints, mode, push, step, work):
     label, method, contact, extra, own_step = mode
     step = own_step or step
@@ -168,12 +181,13 @@ def measure(binary, checkpoints, mode, push, step, work):
         "max_bending_strain": round(bending, 4),
         "max_membrane_strain": round(membrane, 4),
         "plunger_travel_mm": round(float(plunger[-1]["ux"]), 4),
-        "status": "ok"}
+        **accuracy(plunger), "status": "ok"}
 
 
 def judge(rows):
     """Marks the modes whose plunger fell behind the scene's mode (the
-    first row) or whose membrane strain passed twice its."""
+    first row) or whose membrane strain passed twice its, and gives each
+    mode's push work relative to the scene's mode's."""
     reference = rows[0]
     for row in rows[1:]:
         if row["status"] != "ok":
@@ -182,6 +196,9 @@ def judge(rows):
             row["status"] = "plunger held back"
         elif row["max_membrane_strain"] > 2 * reference["max_membrane_strain"]:
             row["status"] = "lens destroyed"
+        else:
+            row["work_against_scene_mode"] = round(
+                row["push_work_nmm"] / reference["push_work_nmm"] - 1, 4)
 
 
 def breakdown(rows):
@@ -211,6 +228,8 @@ def plot(rows, commit):
     axes.axhline(2.0, color="k", ls="--", lw=1, label="500 steps/s")
     for x, r in enumerate(rows):
         verdict = "" if r["status"] == "ok" else f"\n{r['status']}"
+        if "work_against_scene_mode" in r:
+            verdict += f"\nwork {100 * r['work_against_scene_mode']:+.1f} %"
         axes.text(x, bottom[x], f"{r['steps_per_second']:g} steps/s{verdict}",
                   ha="center", va="bottom", fontsize=7,
                   color="k" if r["status"] == "ok" else "tab:red")
@@ -222,11 +241,17 @@ def plot(rows, commit):
                 os.path.join(OUT, "haptic_rate.png"))
 
 
-def main():
-    parser = argparse.ArgumentParser(description=__doc__)
+def add_bed_arguments(parser):
+    """The coshell binary and the push's length, shared with
+    haptic_speed_error.py."""
     parser.add_argument("--coshell", required=True)
     parser.add_argument("--push", type=float, default=0.2,
                         help="seconds of push after the fold")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__)
+    add_bed_arguments(parser)
     parser.add_argument("--step", type=float, default=0.001,
                         help="fixed time step, s")
     args = parser.parse_args()
@@ -255,8 +280,12 @@ def main():
                "filter 0.5; status ok: the plunger's travel at least 0.95 "
                "and the largest membrane strain at most 2 times the "
                "first mode's"],
-              list(dict.fromkeys(k for r in rows for k in r)))
+              status_last(list(dict.fromkeys(k for r in rows for k in r))))
     plot(rows, commit)
+
+
+def status_last(fields):
+    return [f for f in fields if f != "status"] + ["status"]
 
 
 if __name__ == "__main__":

@@ -172,6 +172,21 @@ def travel_measures(displacement, push, work, window=0.5):
     return float(averaged.max()), float(work[end - 1])
 
 
+def push_measures(rows, after=0.0):
+    """The push's work on the lens (N mm, the trapezoidal integral of the
+    plunger's axial force over its travel, from the first of its
+    contact_forces.csv rows later than 'after' s) and its largest force
+    averaged over 0.5 mm of travel (N): one way to measure every run, the
+    restarted ones included, whose cumulative work column starts anew."""
+    rows = [r for r in rows if float(r["time"]) > after]
+    travel = column(rows, "ux")
+    force = -column(rows, "fx")  # on the lens
+    work = np.concatenate(([0.0], np.cumsum(
+        0.5 * (force[1:] + force[:-1]) * np.diff(travel))))
+    averaged, total = travel_measures(travel, force, work)
+    return total, averaged
+
+
 def check_force_file_work(checks, output, work):
     """plunger_force.csv's force integrated over its travel, by trapezoids
     on its rows up to the largest travel, against the code's work of the

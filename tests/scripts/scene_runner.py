@@ -9,12 +9,15 @@ import subprocess
 import sys
 
 
-def run_scene(coshell, prm, output, assignments):
-    """Runs 'coshell prm --output output --set a ...'; exits the checker
-    with a failure line if coshell fails."""
+def run_scene(coshell, prm, output, assignments, restart=None):
+    """Runs 'coshell prm --output output --set a ...' (from the checkpoint
+    'restart' if given); exits the checker with a failure line if coshell
+    fails."""
     if os.path.isdir(output):
         shutil.rmtree(output)
     command = [coshell, prm, "--output", output]
+    if restart:
+        command += ["--restart", restart]
     for assignment in assignments:
         command += ["--set", assignment]
     print("running:", " ".join(repr(c) for c in command), flush=True)

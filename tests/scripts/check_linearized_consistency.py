@@ -1,0 +1,108 @@
+#!/usr/bin/python3
+"""Consistency in time of the linearized implicit Euler (the seed paper's
+one linear solve per step) on the IOL push, prm/iol/injection.prm.
+
+The fold (stage 1, the scene's own mode) runs once and leaves a
+checkpoint at its end. From it, --push seconds of push run in the
+scene's mode (backward Euler, full Newton, the barrier) at
+--reference-step, and in the linearized implicit Euler at each of
+--steps (halving). Every run has the same settings otherwise, --set
+included, so the only difference is the integrator.
+
+The reference is independent of the linearized mode: the converged
+implicit solution of the same equations. Asserted:
+- every run completes, and its plunger travels as far as the
+  reference's (a prescribed motion; a jam would stop it);
+- the linearized force on the lens averaged over 0.5 mm of travel tends
+  to the reference's: its relative error falls at least twofold per
+  halving of the step (consistency of at least first order).
+Printed: the errors in that force and in the push's work, and each
+run's real-time factor (doc/performance.md, "Speed against error of the
+time-stepping modes").
+"""
+import argparse
+import glob
+import json
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from check_injection import column, push_measures  # noqa: E402
+from scene_runner import (add_scene_arguments, exit_with,  # noqa: E402
+                          read_rows, run_scene)
+
+FOLD_END = 1.3  # s, stage 1 of the scene
+PLUNGER = 2  # its obstacle number
+QUIET = ["Stage 3/Analysis type=none", "Stage 4/Analysis type=none",
+         "Output/Write VTU=false", "Parallel/Threads=1"]
+
+
+def parse_arguments():
+    parser = argparse.ArgumentParser(description=__doc__)
+    add_scene_arguments(parser)
+    parser.add_argument("--push", type=float, default=0.2,
+                        help="seconds of push after the fold")
+    parser.add_argument("--reference-step", type=float, default=0.001,
+                        help="the Newton reference's time step, s")
+    parser.add_argument("--steps", type=float, nargs="+",
+                        default=[0.001, 0.0005, 0.00025],
+                        help="the linearized runs' time steps, s, halving")
+    return parser.parse_args()
+
+
+def folded_checkpoint(args):
+    output = os.path.join(args.output, "fold")
+    run_scene(args.coshell, args.prm, output, args.set + QUIET + [
+        "Stage 2/Analysis type=none",
+        f"Output/Checkpoint interval={FOLD_END}"])
+    return sorted(glob.glob(os.path.join(output, "checkpoint-*.h5")))[-1]
+
+
+def push(args, checkpoint, name, method, step):
+    """One push from the fold's checkpoint: its plunger travel (mm), force
+    over 0.5 mm (N), work (N mm) and real-time factor."""
+    output = os.path.join(args.output, name)
+    run_scene(args.coshell, args.prm, output, args.set + QUIET + [
+        f"Stage 2/Duration={args.push}", f"Time integration/Method={method}",
+        f"Time integration/Time step={step}",
+        f"Time integration/Maximum time step={step}"], restart=checkpoint)
+    rows = [r for r in read_rows(os.path.join(output, "contact_forces.csv"))
+            if int(r["obstacle"]) == PLUNGER and float(r["time"]) > FOLD_END]
+    work, force = push_measures(rows)
+    with open(os.path.join(output, "summary.json")) as f:
+        seconds = json.load(f)["time_stepping_s"]["total"]
+    return {"name": name, "travel": column(rows, "ux")[-1], "force": force,
+            "work": work, "real_time_factor": args.push / seconds}
+
+
+def main():
+    args = parse_arguments()
+    checkpoint = folded_checkpoint(args)
+    reference = push(args, checkpoint, "newton", "implicit euler",
+                     args.reference_step)
+    runs = [push(args, checkpoint, f"linearized_{step:g}",
+                 "linearized implicit euler", step) for step in args.steps]
+    print(f"reference (Newton, dt {args.reference_step:g} s): force over "
+          f"0.5 mm {1e3 * reference['force']:.4g} mN, work "
+          f"{reference['work']:.4g} N mm, real-time factor "
+          f"{reference['real_time_factor']:.3g}")
+    failures, errors = [], []
+    for step, run in zip(args.steps, runs):
+        errors.append(abs(run["force"] / reference["force"] - 1))
+        print(f"linearized, dt {step:g} s: force {1e3 * run['force']:.4g} "
+              f"mN (error {100 * errors[-1]:.3g} %), work {run['work']:.4g} "
+              f"N mm (error {100 * (run['work'] / reference['work'] - 1):+.3g}"
+              f" %), real-time factor {run['real_time_factor']:.3g}")
+        if abs(run["travel"] - reference["travel"]) > 1e-9:
+            failures.append(f"{run['name']}: the plunger travelled "
+                            f"{run['travel']:g} mm, not {reference['travel']:g}")
+    for coarse, fine, step in zip(errors, errors[1:], args.steps[1:]):
+        if fine > coarse / 2:
+            failures.append(f"at dt {step:g} s the force's error "
+                            f"{100 * fine:.3g} % is not half of "
+                            f"{100 * coarse:.3g} %")
+    exit_with(failures)
+
+
+if __name__ == "__main__":
+    main()
