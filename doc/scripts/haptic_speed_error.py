@@ -37,7 +37,7 @@ OUT = haptic_rate.OUT
 # issue's haptic mode), each with its time steps in s, largest first. The
 # reference is the first mode's last step.
 LADDERS = [
-    (0, [0.001, 0.0005, 0.00025]),
+    (0, [0.016, 0.008, 0.004, 0.002, 0.001, 0.0005, 0.00025]),
     (2, [0.001, 0.0005]),
     (1, [0.001, 0.0005, 0.00025]),
     (3, [0.0005, 0.00025, 0.000125]),
