@@ -156,11 +156,15 @@ set_tests_properties(iol.interactive_plunger_slope PROPERTIES LABELS "iol;long")
 # 2720 %, 302 % and 63 % at 1, 0.5 and 0.25 ms (Newton: 0.535 mN); 23 s.
 # Far from that force at the steps a haptic loop affords: the default
 # lens's numbers are doc/performance.md's "Speed against error of the
-# time-stepping modes".
+# time-stepping modes". The mode that section recommends instead, Newton
+# stopped once a correction is at most 1 um, must stay within 1 % of the
+# reference at its 1 ms (measured +0.09 %, 1.2 corrections a step against
+# 2.15; the default lens -0.31 %); 26 s in all.
 coshell_iol_test(iol.push.linearized_consistency
                  check_linearized_consistency.py injection.prm
                  --set ${coarse_lens}
-                 --set "Contact/Stiction displacement=0.01")
+                 --set "Contact/Stiction displacement=0.01"
+                 --loose-tolerance 1e-3 --loose-within 0.01)
 
 # Co-rotational kinematics tend to the linear ones as the load vanishes:
 # the haptic at 1e-4 mN (load factor 0.01 of the prm's 0.01 mN), level 1,

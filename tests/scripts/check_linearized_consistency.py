@@ -16,9 +16,13 @@ implicit solution of the same equations. Asserted:
 - the linearized force on the lens averaged over 0.5 mm of travel tends
   to the reference's: its relative error falls at least twofold per
   halving of the step (consistency of at least first order).
-Printed: the errors in that force and in the push's work, and each
-run's real-time factor (doc/performance.md, "Speed against error of the
-time-stepping modes").
+With --loose-tolerance TOL, one more push runs Newton stopped once a
+correction is at most TOL (Nonlinear solver/Correction tolerance) at the
+reference's step, the cheap accurate mode of that section. Asserted: its
+force is within --loose-within (relative) of the reference's.
+Printed: the errors in that force and in the push's work, each run's
+real-time factor, and the loose run's corrections per step
+(doc/performance.md, "Speed against error of the time-stepping modes").
 """
 import argparse
 import glob
@@ -47,6 +51,11 @@ def parse_arguments():
     parser.add_argument("--steps", type=float, nargs="+",
                         default=[0.001, 0.0005, 0.00025],
                         help="the linearized runs' time steps, s, halving")
+    parser.add_argument("--loose-tolerance", type=float,
+                        help="Newton's Correction tolerance of the loose "
+                        "run, mm (none: no loose run)")
+    parser.add_argument("--loose-within", type=float, default=0.01,
+                        help="the loose run's largest relative force error")
     return parser.parse_args()
 
 
@@ -58,21 +67,45 @@ def folded_checkpoint(args):
     return sorted(glob.glob(os.path.join(output, "checkpoint-*.h5")))[-1]
 
 
-def push(args, checkpoint, name, method, step):
+def push(args, checkpoint, name, method, step, more=()):
     """One push from the fold's checkpoint: its plunger travel (mm), force
-    over 0.5 mm (N), work (N mm) and real-time factor."""
+    over 0.5 mm (N), work (N mm), real-time factor and Newton iterations
+    per step."""
     output = os.path.join(args.output, name)
     run_scene(args.coshell, args.prm, output, args.set + QUIET + [
         f"Stage 2/Duration={args.push}", f"Time integration/Method={method}",
         f"Time integration/Time step={step}",
-        f"Time integration/Maximum time step={step}"], restart=checkpoint)
+        f"Time integration/Maximum time step={step}"] + list(more),
+        restart=checkpoint)
     rows = [r for r in read_rows(os.path.join(output, "contact_forces.csv"))
             if int(r["obstacle"]) == PLUNGER and float(r["time"]) > FOLD_END]
     work, force = push_measures(rows)
     with open(os.path.join(output, "summary.json")) as f:
-        seconds = json.load(f)["time_stepping_s"]["total"]
+        summary = json.load(f)
     return {"name": name, "travel": column(rows, "ux")[-1], "force": force,
-            "work": work, "real_time_factor": args.push / seconds}
+            "work": work, "real_time_factor":
+            args.push / summary["time_stepping_s"]["total"],
+            "iterations_per_step": summary["newton_iterations"] / len(rows)}
+
+
+def check_loose(args, checkpoint, reference):
+    """The failures of Newton stopped at --loose-tolerance against the
+    reference."""
+    loose = push(args, checkpoint, "newton_loose", "implicit euler",
+                 args.reference_step, [
+                     "Nonlinear solver/Correction tolerance="
+                     f"{args.loose_tolerance:g}"])
+    error = loose["force"] / reference["force"] - 1
+    print(f"Newton to {args.loose_tolerance:g} mm: force "
+          f"{1e3 * loose['force']:.4g} mN (error {100 * error:+.3g} %), "
+          f"{loose['iterations_per_step']:.3g} corrections a step (the "
+          f"reference {reference['iterations_per_step']:.3g}), real-time "
+          f"factor {loose['real_time_factor']:.3g}")
+    if abs(error) > args.loose_within:
+        return [f"Newton to {args.loose_tolerance:g} mm is "
+                f"{100 * error:+.3g} % off, more than "
+                f"{100 * args.loose_within:g} %"]
+    return []
 
 
 def main():
@@ -101,6 +134,8 @@ def main():
             failures.append(f"at dt {step:g} s the force's error "
                             f"{100 * fine:.3g} % is not half of "
                             f"{100 * coarse:.3g} %")
+    if args.loose_tolerance:
+        failures += check_loose(args, checkpoint, reference)
     exit_with(failures)
 
 
