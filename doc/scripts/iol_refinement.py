@@ -34,6 +34,7 @@ time; the header then names both commits.
 import argparse
 import json
 import os
+import re
 import subprocess
 import sys
 import tempfile
@@ -273,7 +274,8 @@ def main():
         args.tag
     if args.replot:
         with open(os.path.join(OUT, name + ".csv")) as f:
-            commit = f.readline().split("commit ")[-1].strip()
+            # A resumed study's header names the commit of each part.
+            commit = " and ".join(re.findall(r"commit (\w+)", f.readline()))
         plot(read_rows_written(name), push, commit, name)
         return
     stages = ("the whole scene (fold, push to the nozzle's tip, deployment, "
