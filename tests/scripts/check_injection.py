@@ -172,18 +172,22 @@ def travel_measures(displacement, push, work, window=0.5):
     return float(averaged.max()), float(work[end - 1])
 
 
-def push_measures(rows, after=0.0):
-    """The push's work on the lens (N mm, the trapezoidal integral of the
-    plunger's axial force over its travel, from the first of its
-    contact_forces.csv rows later than 'after' s) and its largest force
-    averaged over 0.5 mm of travel (N): one way to measure every run, the
-    restarted ones included, whose cumulative work column starts anew."""
-    rows = [r for r in rows if float(r["time"]) > after]
+def trapezoid_work(travel, force):
+    """The work of 'force' over 'travel' so far, at every row (N mm, by
+    trapezoids on the rows)."""
+    return np.concatenate(([0.0], np.cumsum(
+        0.5 * (force[1:] + force[:-1]) * np.diff(travel))))
+
+
+def push_measures(rows):
+    """The push's work on the lens (N mm, by trapezoids on the plunger's
+    contact_forces.csv 'rows') and its largest force averaged over 0.5 mm
+    of travel (N): one way to measure every run, the restarted ones
+    included, whose cumulative work column starts anew."""
     travel = column(rows, "ux")
     force = -column(rows, "fx")  # on the lens
-    work = np.concatenate(([0.0], np.cumsum(
-        0.5 * (force[1:] + force[:-1]) * np.diff(travel))))
-    averaged, total = travel_measures(travel, force, work)
+    averaged, total = travel_measures(travel, force,
+                                      trapezoid_work(travel, force))
     return total, averaged
 
 
@@ -199,8 +203,7 @@ def check_force_file_work(checks, output, work):
     x = np.array([float(r["plunger_displacement"]) for r in rows])
     f = np.array([float(r["force_n"]) for r in rows])
     end = int(np.argmax(x)) + 1
-    trapezoids = float(np.sum(0.5 * (f[1:end] + f[:end - 1]) *
-                              np.diff(x[:end])))
+    trapezoids = float(trapezoid_work(x[:end], f[:end])[-1])
     print(f"plunger_force.csv: the force over the travel, by trapezoids, "
           f"{trapezoids:.5g} N mm ({100 * (trapezoids / work - 1):+.2f} % of "
           f"the code's {work:.5g} N mm)")
