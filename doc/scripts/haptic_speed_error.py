@@ -7,7 +7,8 @@ Per run: the real-time factor (simulated over wall time of the time
 stepping, one thread) and the plunger's force on the lens averaged over
 0.5 mm of travel and its work, against the reference, the scene's own
 mode (backward Euler, full Newton, barrier) at the smallest step of its
-ladder. haptic_rate.py counts steps per second; a step of a linearized
+ladder; a linearized run's force also against Newton's with the same
+contact, friction floor and step. haptic_rate.py counts steps per second; a step of a linearized
 mode is cheaper, but its force drifts from the converged one by an
 amount that falls with the step, so what a mode costs for a given
 accuracy is the measure here.
@@ -47,12 +48,22 @@ LADDERS = [
     (1, [0.001, 0.0005, 0.00025], []),
     (3, [0.0005, 0.00025, 0.000125], []),
     (0, [0.016, 0.008, 0.004, 0.002, 0.001, 0.0005], LOOSE),
+    (0, [0.001, 0.0005, 0.00025], haptic_rate.FLOOR),
+    (2, [0.0005, 0.00025, 0.000125], haptic_rate.FLOOR),
 ]
 FAMILIES = ["backward Euler, Newton, barrier (the scene's)",
             "backward Euler, Newton, penalty",
             "linearized Euler, barrier",
             "linearized Euler, penalty (the haptic mode)",
-            "backward Euler, Newton to 1 um, barrier"]
+            "backward Euler, Newton to 1 um, barrier",
+            "backward Euler, Newton, barrier, friction floor",
+            "backward Euler, Newton, penalty, friction floor"]
+# The linearized runs carry haptic_rate.FLOOR on friction's smoothing,
+# which alone moves the converged force, and by an amount that depends on
+# the step (friction's force in a step grows with the step's slip up to
+# the floor): their error against Newton with the same contact, friction
+# and step is the linearization's.
+SAME_FRICTION = {FAMILIES[2]: FAMILIES[5], FAMILIES[3]: FAMILIES[6]}
 
 
 def run_ladders(binary, push, work):
@@ -87,6 +98,14 @@ def add_errors(rows):
         for column, name in (("force_over_0.5mm_mn", "force_error"),
                              ("push_work_nmm", "work_error")):
             row[name] = round(row[column] / reference[column] - 1, 4)
+    for row in rows:
+        same = [r for r in rows if r["family"] == SAME_FRICTION.get(
+            row["family"]) and r["time_step_s"] == row["time_step_s"]
+            and r["status"] == "ok"]
+        if row["status"] == "ok" and same:
+            row["force_error_same_friction"] = round(
+                row["force_over_0.5mm_mn"] / same[-1]["force_over_0.5mm_mn"]
+                - 1, 4)
     return reference
 
 
@@ -98,7 +117,7 @@ def replot():
     rows = read_csv(path)
     for row in rows:
         for key in ("time_step_s", "real_time_factor", "force_error",
-                    "force_over_0.5mm_mn"):
+                    "force_error_same_friction", "force_over_0.5mm_mn"):
             if row.get(key):
                 row[key] = float(row[key])
             else:
@@ -110,16 +129,20 @@ def replot():
 def plot(rows, reference, commit):
     figure, ax = plt.subplots(figsize=(7.5, 4.5))
     for family in FAMILIES:
-        runs = [r for r in rows if r["family"] == family and "force_error"
-                in r and r is not reference]
+        # A linearized run is measured against Newton with its friction.
+        key, label = ("force_error_same_friction",
+                      family + ", against Newton with its floor and step") \
+            if family in SAME_FRICTION else ("force_error", family)
+        runs = [r for r in rows if r["family"] == family and key in r
+                and r is not reference]
         if not runs:
             continue
         x = [r["real_time_factor"] for r in runs]
         # An error below the CSV's 4 digits is drawn at 1e-4, so marked.
-        y = [max(abs(r["force_error"]), 1e-4) for r in runs]
-        ax.plot(x, y, "o-", label=family)
+        y = [max(abs(r[key]), 1e-4) for r in runs]
+        ax.plot(x, y, "o-", label=label)
         for r, xi, yi in zip(runs, x, y):
-            below = ", < 1e-4" if abs(r["force_error"]) < 1e-4 else ""
+            below = ", < 1e-4" if abs(r[key]) < 1e-4 else ""
             ax.annotate(f"{1e3 * r['time_step_s']:g} ms{below}", (xi, yi),
                         fontsize=7, xytext=(3, 3), textcoords="offset points")
     ax.set_xscale("log")
@@ -146,7 +169,8 @@ def main():
         rows = run_ladders(binary, args.push, work)
     reference = add_errors(rows)
     fields = ["family", "time_step_s", "real_time_factor",
-              "force_over_0.5mm_mn", "force_error", "push_work_nmm",
+              "force_over_0.5mm_mn", "force_error",
+              "force_error_same_friction", "push_work_nmm",
               "work_error", "steps", "newton_iterations", "steps_per_second",
               "smallest_gap_mm", "max_membrane_strain", "status"]
     write_csv(os.path.join(OUT, "haptic_speed_error.csv"),
@@ -157,7 +181,9 @@ def main():
                "per run at a fixed time step, Parallel/Threads = 1, no VTU; "
                "modes and settings of doc/scripts/haptic_rate.py; errors "
                "relative to the scene's mode at "
-               f"{1e3 * reference['time_step_s']:g} ms"], fields)
+               f"{1e3 * reference['time_step_s']:g} ms; "
+               "force_error_same_friction: a linearized run's against "
+               "Newton with its contact, friction floor and step"], fields)
     plot(rows, reference, commit)
 
 

@@ -83,11 +83,13 @@ namespace coshell::contact
     saved_potential_per_obstacle_.assign(n, 0.0);
     shell_force_.assign(n, Vector<double>(model.n_dofs()));
     saved_shell_force_ = shell_force_;
-    // Only an interactive run's driven obstacles pay for their couplings.
-    input_couplings_.resize(n);
+    // Only an interactive run's driven obstacles pay for their slopes,
+    // unless follow_force_slopes() asks for every obstacle's.
+    force_slopes_.resize(n);
     for (unsigned int o = 0; o < n; ++o)
       if (parameters_.obstacles[o].input)
-        input_couplings_[o].coupling.reinit(model.n_dofs());
+        for (Vector<double> &gradient : force_slopes_[o].gradients)
+          gradient.reinit(model.n_dofs());
     for (const Obstacle &obstacle : parameters_.obstacles)
       start_centroids_.push_back(centroid(obstacle.positions(0)));
     vertex_gap_.assign(vertices.size(), infinity);

@@ -137,8 +137,8 @@ namespace coshell::contact
         block.matrix = 0;
       add_friction(lagged, with_tangent, block);
       // Friction's block is exact (positive semi-definite as it stands).
-      if (with_tangent && drives_input(lagged.pair))
-        add_input_coupling(lagged.pair, block.dofs, block.matrix);
+      if (with_tangent && follows_force(lagged.pair))
+        add_force_slopes(lagged.pair, block.dofs, block.matrix);
       add_shell_force(lagged.pair, block);
       sink(block);
     }

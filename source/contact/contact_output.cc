@@ -157,6 +157,12 @@ namespace coshell::contact
     contact_.end_trial();
   }
 
+  void
+  ContactContribution::extrapolate_reports(const Vector<double> &correction)
+  {
+    contact_.extrapolate_loads(correction);
+  }
+
   bool ContactContribution::symmetric_tangent() const
   {
     return true;

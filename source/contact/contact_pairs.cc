@@ -427,7 +427,7 @@ namespace coshell::contact
     const auto start = std::chrono::steady_clock::now();
     reset_pair_records();
     if (with_tangent)
-      reset_input_couplings();
+      reset_force_slopes();
     model::DofBlock block;
     for (const Pair &pair : pairs_)
     {
@@ -453,8 +453,8 @@ namespace coshell::contact
         block.vector[i - shell.first] = -energy.gradient[i]; // on the shell
       if (with_tangent)
         pair_hessian(energy, shell, block.matrix);
-      if (with_tangent && drives_input(pair))
-        add_input_coupling(pair, block.dofs, energy);
+      if (with_tangent && follows_force(pair))
+        add_force_slopes(pair, block.dofs, energy);
       record_pair(pair, points, energy.gradient, gap, block);
       potential_ += energy.value;
       if (!pair.self)

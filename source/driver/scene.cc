@@ -1087,12 +1087,12 @@ namespace coshell::driver
     Vector<double> input_load(const model::ShellProblem &problem,
                               const contact::Contact    &contact)
     {
-      const auto    &couplings = contact.input_couplings();
       const auto    &obstacles = contact.obstacles();
       Vector<double> load(problem.model().n_dofs());
       for (unsigned int o = 0; o < obstacles.size(); ++o)
-        if (couplings[o].coupling.size() > 0)
-          load.add(obstacles[o].input_direction.norm(), couplings[o].coupling);
+        if (const auto input = contact.input_coupling(o);
+            input.coupling.size() > 0)
+          load.add(obstacles[o].input_direction.norm(), input.coupling);
       problem.constraints().condense(load);
       return load;
     }
@@ -1132,18 +1132,16 @@ namespace coshell::driver
       response = std::numeric_limits<double>::quiet_NaN();
     }
     contact.set_exact_tangent(false);
-    const auto &couplings = contact.input_couplings();
     const auto &obstacles = contact.obstacles();
     auto       &reply     = *interactive_->replies;
     reply << "slope " << step << ' ' << interactive_->input->value(time);
     for (unsigned int o = 0; o < obstacles.size(); ++o)
-      if (couplings[o].coupling.size() > 0)
+      if (auto input = contact.input_coupling(o); input.coupling.size() > 0)
       {
-        Vector<double> coupling = couplings[o].coupling;
-        problem.constraints().condense(coupling);
+        problem.constraints().condense(input.coupling);
         reply << ' '
-              << coupling * response - obstacles[o].input_direction.norm() *
-                                           couplings[o].stiffness;
+              << input.coupling * response -
+                     obstacles[o].input_direction.norm() * input.stiffness;
       }
     reply << std::endl;
   }
@@ -1303,6 +1301,10 @@ namespace coshell::driver
             ? mean_dead_load_pressure(model, loads_)
             : 0.0);
     contact->check_initial_configuration(state, 0);
+    // A linearized step reports its obstacles' forces at its end only
+    // through their slopes (Contact::extrapolate_loads()).
+    if (time_integration_.method() == "linearized implicit euler")
+      contact->follow_force_slopes();
     out.contact = contact.get();
     out.contact_forces.emplace(
         directory + "/contact_forces.csv",

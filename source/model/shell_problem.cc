@@ -489,6 +489,12 @@ namespace coshell::model
     return largest > bound ? bound / largest : 1;
   }
 
+  void ShellProblem::extrapolate_reports(const Vector<double> &correction)
+  {
+    for (const auto &contribution : contributions_)
+      contribution->extrapolate_reports(correction);
+  }
+
   void ShellProblem::save()
   {
     converged_force_scale_ =

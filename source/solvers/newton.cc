@@ -464,6 +464,7 @@ namespace coshell::solvers
     if (fraction < 1)
       du *= fraction;
     problem.apply_increment(du);
+    problem.extrapolate_reports(du);
     if (observer)
       observer({0, relative_residual, du.l2_norm(), 1});
     return relative_residual;

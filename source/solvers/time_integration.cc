@@ -149,6 +149,10 @@ namespace coshell::solvers
       {
         return problem_.admissible_fraction(dx);
       }
+      void extrapolate_reports(const Vector<double> &dx) override
+      {
+        problem_.extrapolate_reports(dx);
+      }
       void save() override
       {
         problem_.save();
@@ -297,7 +301,10 @@ namespace coshell::solvers
         "numerical damping of the high frequencies set by Spectral "
         "radius); implicit euler: backward Euler with full Newton (first "
         "order, strongly damped); linearized implicit euler: one linear "
-        "solve per step (Baraff & Witkin 1998; SOFA and the seed paper).");
+        "solve per step (Baraff & Witkin 1998; SOFA and the seed paper), "
+        "which reports the obstacles' forces at the step's end by their "
+        "linearization (the force at the step's one evaluation plus its "
+        "slopes times the correction).");
     prm.declare_entry(
         "Lie group", "R3xSO3", Patterns::Selection("R3xSO3|SE3"),
         "The group each vertex's configuration (x, R) is integrated on "

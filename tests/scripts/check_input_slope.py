@@ -10,10 +10,9 @@ s - delta. The central difference of the forces in contact_forces.csv
 (12 digits) is compared with the slope the middle session printed for
 that step.
 
-With --held T the sessions go on to T with the input held, and the force
-compared is that of the step at T: a linearized step evaluates its force
-at its start, so the step after the changed one is where the change
-shows.
+A linearized step reports its force at its end through the force's
+slopes (Contact::extrapolate_loads()), so the changed step is where the
+change shows there too.
 """
 import os
 import shutil
@@ -31,8 +30,6 @@ def main():
                         help="the sessions' first lines, separated by ';'")
     parser.add_argument("--last", nargs=2, type=float, required=True,
                         metavar=("T", "S"), help="the last target and input")
-    parser.add_argument("--held", type=float,
-                        help="a further target with the input held")
     parser.add_argument("--delta", type=float, required=True,
                         help="the input's change (length)")
     parser.add_argument("--rtol", type=float, required=True)
@@ -46,9 +43,6 @@ def main():
         lines = [line.strip() for line in args.lines.split(";")]
         lines.append(f"{t!r} {s + change * args.delta!r}")
         done = [line.split()[0] for line in lines]
-        if args.held is not None:
-            lines.append(repr(args.held))
-            done.append(repr(args.held))
         output = os.path.join(args.output, name)
         print(f"{name} session: {lines}")
         run = run_session(args.coshell, args.prm, output, args.set,

@@ -1,7 +1,8 @@
 // The contact contribution of a small plate over a rigid plane, assembled
 // as ShellProblem does: its tangent against central differences of its
-// forces, with the barrier and with friction, and the equal and opposite
-// force on the obstacle; the same tangent check for self contact.
+// forces, with the barrier and with friction, the equal and opposite
+// force on the obstacle and that force's slopes (what a linearized step
+// reports its force with); the same tangent check for self contact.
 
 #include <coshell/contact/contact.h>
 #include <coshell/io/expressions.h>
@@ -13,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <utility>
 
 namespace
 {
@@ -87,6 +89,28 @@ namespace
     return parameters;
   }
 
+  /// What 'measure' takes from the assembly at time 1 with translation
+  /// DoF j moved by +h and by -h; the state is put back.
+  template<typename Measure>
+  auto measured_both_ways(contact::ContactContribution &contribution,
+                          model::ShellState            &state,
+                          unsigned int                  n,
+                          unsigned int                  j,
+                          double                        h,
+                          const Measure                &measure)
+  {
+    Vector<double> step(n);
+    step[j] = h;
+    state.apply_increment(step);
+    const auto plus = measure(assemble(contribution, state, 1, n));
+    step[j]         = -2 * h;
+    state.apply_increment(step);
+    const auto minus = measure(assemble(contribution, state, 1, n));
+    step[j]          = h;
+    state.apply_increment(step);
+    return std::make_pair(plus, minus);
+  }
+
   /// The contribution's tangent at time 1 against central differences of
   /// its forces over every translation (contact does not see rotations);
   /// returns what was assembled there.
@@ -106,15 +130,9 @@ namespace
     {
       if (j % 6 >= 3)
         continue;
-      Vector<double> step(n);
-      step[j] = h;
-      state.apply_increment(step);
-      const Vector<double> plus = assemble(contribution, state, 1, n).force;
-      step[j]                   = -2 * h;
-      state.apply_increment(step);
-      const Vector<double> minus = assemble(contribution, state, 1, n).force;
-      step[j]                    = h;
-      state.apply_increment(step);
+      const auto [plus, minus] =
+          measured_both_ways(contribution, state, n, j, h,
+                             [](const Assembled &at) { return at.force; });
       for (unsigned int i = 0; i < n; ++i)
         EXPECT_NEAR(-(plus[i] - minus[i]) / (2 * h), at.tangent(i, j),
                     1e-5 * scale)
@@ -157,6 +175,52 @@ namespace
     return load;
   }
 
+  /// The obstacle's force slopes at time 1 against central differences of
+  /// its load over every translation of the shell, and the load carried
+  /// along a small move by extrapolate_loads() against the load assembled
+  /// there (second-order close).
+  void
+  expect_force_slopes_match_loads(contact::Contact             &contact,
+                                  contact::ContactContribution &contribution,
+                                  model::ShellState            &state,
+                                  unsigned int                  n)
+  {
+    assemble(contribution, state, 1, n);
+    const auto  slopes = contact.force_slopes(0);
+    const auto  load   = contact.obstacle_loads()[0].force;
+    const auto &loads  = contact.obstacle_loads();
+    double      scale  = 0;
+    for (unsigned int k = 0; k < 3; ++k)
+      scale = std::max(scale, slopes.gradients[k].linfty_norm());
+    EXPECT_GT(scale, 0);
+    const double   h = 1e-7;
+    Vector<double> move(n);
+    for (unsigned int j = 0; j < n; ++j)
+    {
+      if (j % 6 >= 3)
+        continue;
+      const auto [plus, minus] =
+          measured_both_ways(contribution, state, n, j, h,
+                             [&](const Assembled &) { return loads[0].force; });
+      for (unsigned int k = 0; k < 3; ++k)
+        EXPECT_NEAR((plus[k] - minus[k]) / (2 * h), slopes.gradients[k][j],
+                    1e-5 * scale)
+            << "axis " << k << ", DoF " << j;
+      move[j] = 1e-4 * (1 + j % 5) * (j % 2 ? 1 : -1);
+    }
+    // The extrapolation's error is second order: far below its change.
+    assemble(contribution, state, 1, n);
+    contact.extrapolate_loads(move);
+    const auto extrapolated = loads[0].force;
+    state.apply_increment(move);
+    assemble(contribution, state, 1, n);
+    EXPECT_GT((extrapolated - load).norm(), 0);
+    EXPECT_LT((extrapolated - loads[0].force).norm(),
+              0.05 * (extrapolated - load).norm());
+    move *= -1;
+    state.apply_increment(move);
+  }
+
   /// Plate [0, 2]^2, h = 1 (offset 0.5), over the plane z = -0.55 (gap
   /// 0.05 < activation 0.1); after a converged state at t = 0 the plate is
   /// moved sideways and down, and the tangent at t = 1 is checked.
@@ -170,6 +234,7 @@ namespace
     parameters.stiction_velocity          = 0.01;
     parameters.obstacles                  = {plane(-0.55, friction)};
     contact::Contact contact(model, parameters);
+    contact.follow_force_slopes();
     contact.check_initial_configuration(state, 0);
     contact::ContactContribution contribution(contact);
     const unsigned int           n = model.n_dofs();
@@ -186,6 +251,7 @@ namespace
     }
     state.apply_increment(move);
     expect_tangent_matches_forces(contribution, state, n);
+    expect_force_slopes_match_loads(contact, contribution, state, n);
     const auto &load =
         expect_action_and_reaction(contact, contribution, plate, n);
     EXPECT_GT(load.active_pairs, 0u);

@@ -12,6 +12,7 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/numerics/rtree.h>
 
+#include <array>
 #include <initializer_list>
 #include <limits>
 #include <map>
@@ -161,26 +162,50 @@ namespace coshell::contact
 
     /// Per obstacle, at the last evaluation.
     const std::vector<ObstacleLoad> &obstacle_loads() const;
-    /// For an obstacle that an interactive input drives (its Input
-    /// direction d, the input s moving it by s d): its contact and
-    /// friction pairs' exact (not projected) blocks H_ss on the shell's
-    /// translations, applied to
-    /// the unit vector e = d / |d| at every shell point of the pairs, at
+    /// The slopes of an obstacle's force, for an obstacle whose force is
+    /// followed (see follow_force_slopes(); an interactive input's driven
+    /// obstacles always are): its contact and friction pairs' exact (not
+    /// projected) blocks H_ss on the shell's translations, applied to the
+    /// unit vectors e_k of the axes at every shell point of the pairs, at
     /// the last evaluation that assembled the tangent. The pairs' energies
     /// depend on differences of positions only, so the shell's blocks also
     /// stand for the obstacle's: the force F the shell exerts on the
-    /// obstacle along e has dF/d(shell) = 'coupling' and, with the shell
-    /// held, dF/ds = -|d| 'stiffness'; the shell's residual has
-    /// dr/ds = |d| 'coupling'. Empty 'coupling' for the other obstacles.
+    /// obstacle has dF_k/d(shell) = gradients[k] and, with the shell held,
+    /// dF_k/d(obstacle translation along axis l) = -stiffness[k][l].
+    /// Empty 'gradients' for the obstacles not followed.
+    struct ForceSlopes
+    {
+      /// H_ss e_k, DoF layout, N/length.
+      std::array<dealii::Vector<double>, 3> gradients;
+      /// e_k^T H_ss e_l, N/length.
+      dealii::Tensor<2, 3> stiffness;
+    };
+    /// Follow the force slopes of every obstacle from the next tangent on
+    /// (a linearized step needs them to carry its reported forces to the
+    /// step's end, see extrapolate_loads()).
+    void               follow_force_slopes();
+    const ForceSlopes &force_slopes(unsigned int obstacle) const
+    {
+      return force_slopes_[obstacle];
+    }
+    /// For an obstacle that an interactive input drives (its Input
+    /// direction d, the input s moving it by s d): its force slopes along
+    /// e = d / |d|. The force F the shell exerts on the obstacle along e
+    /// has dF/d(shell) = 'coupling' and, with the shell held, dF/ds = -|d|
+    /// 'stiffness'; the shell's residual has dr/ds = |d| 'coupling'.
+    /// Empty 'coupling' for the other obstacles.
     struct InputCoupling
     {
       dealii::Vector<double> coupling;      ///< H_ss e, DoF layout, N/length
       double                 stiffness = 0; ///< e^T H_ss e, N/length
     };
-    const std::vector<InputCoupling> &input_couplings() const
-    {
-      return input_couplings_;
-    }
+    InputCoupling input_coupling(unsigned int obstacle) const;
+    /// A linearized step ends without evaluating at its end: the loads
+    /// of the last evaluation, on the obstacles whose slopes are
+    /// followed, become their linearization at the configuration moved by
+    /// 'correction' (DoF layout), F + (dF/d shell) correction. The
+    /// moments, works and gaps stay those of the evaluation.
+    void extrapolate_loads(const dealii::Vector<double> &correction);
     /// While true, the tangent's pair Hessians are not projected to
     /// positive semi-definite whatever Projected tangent says: the slope
     /// of a driven obstacle's force is exact only with the exact tangent.
@@ -333,7 +358,7 @@ namespace coshell::contact
     std::vector<dealii::Point<3>> saved_positions_; ///< at save()
     double                        saved_time_ = 0;
     std::vector<ObstacleLoad>     loads_;
-    std::vector<InputCoupling>    input_couplings_;
+    std::vector<ForceSlopes>      force_slopes_;
     std::vector<double>           obstacle_work_; ///< up to save()
     /// Per obstacle, its pairs' energy and their force on the shell (DoF
     /// layout), at the last evaluation and at save().
@@ -638,21 +663,21 @@ namespace coshell::contact
                         bool               with_tangent,
                         model::DofBlock   &block);
     void   pair_dofs(const Pair &pair, model::DofBlock &block) const;
-    /// input_couplings_: zeroed before a tangent's pairs, then each
-    /// block of a driven obstacle's pair (contact_input.cc).
-    void reset_input_couplings();
-    bool drives_input(const Pair &pair) const;
+    /// force_slopes_: zeroed before a tangent's pairs, then each block of
+    /// a followed obstacle's pair (contact_input.cc).
+    void reset_force_slopes();
+    bool follows_force(const Pair &pair) const;
     /// 'shell_block': the pair's exact (not projected) Hessian on the
     /// translations 'dofs' of its shell points.
     void
-    add_input_coupling(const Pair                                         &pair,
-                       const std::vector<dealii::types::global_dof_index> &dofs,
-                       const dealii::FullMatrix<double> &shell_block);
+    add_force_slopes(const Pair                                         &pair,
+                     const std::vector<dealii::types::global_dof_index> &dofs,
+                     const dealii::FullMatrix<double> &shell_block);
     /// The same for a contact pair, from its energy's Hessian.
     void
-         add_input_coupling(const Pair                                         &pair,
-                            const std::vector<dealii::types::global_dof_index> &dofs,
-                            const PairEnergy &energy);
+         add_force_slopes(const Pair                                         &pair,
+                          const std::vector<dealii::types::global_dof_index> &dofs,
+                          const PairEnergy &energy);
     void pair_hessian(const PairEnergy           &energy,
                       ShellCoordinates            shell,
                       dealii::FullMatrix<double> &matrix) const;
@@ -717,12 +742,13 @@ namespace coshell::contact
     double admissible_fraction(
         const model::ShellState      &state,
         const dealii::Vector<double> &correction) const override;
-    void        save() override;
-    void        restore() override;
-    void        begin_trial() override;
-    void        end_trial() override;
-    bool        symmetric_tangent() const override;
-    bool        use_convex_tangent() override;
+    void extrapolate_reports(const dealii::Vector<double> &correction) override;
+    void save() override;
+    void restore() override;
+    void begin_trial() override;
+    void end_trial() override;
+    bool symmetric_tangent() const override;
+    bool use_convex_tangent() override;
     std::string failure_context() const override;
 
   private:

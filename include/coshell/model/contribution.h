@@ -126,6 +126,12 @@ namespace coshell::model
     }
     /// Called at the start of every Newton solve (a load or time step).
     virtual void begin_solve() {}
+    /// See NonlinearProblem::extrapolate_reports(): carry what this
+    /// contribution reports of the last evaluation along 'correction'.
+    virtual void
+    extrapolate_reports(const dealii::Vector<double> & /*correction*/)
+    {
+    }
     /// Keep and go back to internal state along with the configuration.
     virtual void save() {}
     virtual void restore() {}

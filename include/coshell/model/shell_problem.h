@@ -89,13 +89,14 @@ namespace coshell::model
     void   apply_increment(const dealii::Vector<double> &correction) override;
     double admissible_fraction(
         const dealii::Vector<double> &correction) const override;
-    void        save() override;
-    void        restore() override;
-    void        begin_trial() override;
-    void        end_trial() override;
-    void        keep_trial() override;
-    bool        symmetric_tangent() const override;
-    bool        use_convex_tangent() override;
+    void extrapolate_reports(const dealii::Vector<double> &correction) override;
+    void save() override;
+    void restore() override;
+    void begin_trial() override;
+    void end_trial() override;
+    void keep_trial() override;
+    bool symmetric_tangent() const override;
+    bool use_convex_tangent() override;
     std::string failure_context() const override;
 
     // solvers::EvolutionProblem

@@ -80,6 +80,15 @@ namespace coshell::solvers
       return 1.0;
     }
 
+    /// A step of one correction (the linearized implicit Euler) ends
+    /// without an evaluation at its end: what the problem reports of its
+    /// last evaluation (the forces on obstacles) is carried along the
+    /// applied 'correction' by its linearization.
+    virtual void
+    extrapolate_reports(const dealii::Vector<double> & /*correction*/)
+    {
+    }
+
     /// Keeps a copy of the current iterate; restore() goes back to it.
     virtual void save()    = 0;
     virtual void restore() = 0;
