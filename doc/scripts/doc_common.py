@@ -90,11 +90,18 @@ def largest_strains(output):
             for column in ("max_bending_strain", "max_membrane_strain")]
 
 
-def finish_plot(figure, axes, xlabel, ylabel, title, path):
+def finish_plot(figure, axes, xlabel, ylabel, title, path,
+                legend_below=False):
+    """Labels, grid, legend (below the axes if 'legend_below', for plots
+    whose data fill every corner), title; saves and clears."""
     axes.set_xlabel(xlabel)
     axes.set_ylabel(ylabel)
     axes.grid(True, which="both", alpha=0.3)
-    axes.legend(fontsize=8)
+    if legend_below:
+        axes.legend(fontsize=8, loc="upper center", ncol=2,
+                    bbox_to_anchor=(0.5, -0.14))
+    else:
+        axes.legend(fontsize=8)
     axes.set_title(title)
     figure.tight_layout()
     figure.savefig(path, dpi=110)

@@ -127,7 +127,7 @@ def replot():
 
 
 def plot(rows, reference, commit):
-    figure, ax = plt.subplots(figsize=(7.5, 4.5))
+    figure, ax = plt.subplots(figsize=(9, 6.5))
     for family in FAMILIES:
         # A linearized run is measured against Newton with its friction.
         key, label = ("force_error_same_friction",
@@ -151,7 +151,8 @@ def plot(rows, reference, commit):
                 "force over 0.5 mm: relative error",
                 f"IOL push, default lens: speed against error ({commit}); "
                 f"reference {reference['force_over_0.5mm_mn']:g} mN",
-                os.path.join(OUT, "haptic_speed_error.png"))
+                os.path.join(OUT, "haptic_speed_error.png"),
+                legend_below=True)
 
 
 def main():
