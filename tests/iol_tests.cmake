@@ -151,15 +151,18 @@ set_tests_properties(iol.interactive_plunger_slope PROPERTIES LABELS "iol;long")
 # (one linear solve per step), is consistent: on the first 0.2 s of push
 # (coarse lens, the barrier, the linearized modes' 0.01 mm floor on
 # friction's smoothing for every run) its plunger force over 0.5 mm of
-# travel tends to that of the converged backward Euler at 1 ms, its error
-# at least halving with each halving of the step. Measured 2026-11-29:
-# 2720 %, 302 % and 63 % at 1, 0.5 and 0.25 ms (Newton: 0.535 mN); 23 s.
-# Far from that force at the steps a haptic loop affords: the default
-# lens's numbers are doc/performance.md's "Speed against error of the
-# time-stepping modes". The mode that section recommends instead, Newton
-# stopped once a correction is at most 1 um, must stay within 1 % of the
-# reference at its 1 ms (measured +0.09 %, 1.2 corrections a step against
-# 2.15; the default lens -0.31 %); 26 s in all.
+# travel, reported at each step's end by the force's slopes, tends to
+# that of the converged backward Euler at the same step (the floor makes
+# the converged force depend on the step: 0.535, 0.473 and 0.427 mN at 1,
+# 0.5 and 0.25 ms), its error at least halving with each halving of the
+# step. Measured 2026-11-29: 199 %, 47 % and 18 % (the force of the step's
+# start, reported until then: 2720 %, 355 % and 104 %). Far from that
+# force at the steps a haptic loop affords: the default lens's numbers are
+# doc/performance.md's "The linearized step's force at its end". The mode
+# that doc recommends instead, Newton stopped once a correction is at most
+# 1 um, must stay within 1 % of the reference at 1 ms (measured +0.09 %,
+# 1.2 corrections a step against 2.15; the default lens -0.31 %); 41 s
+# in all.
 coshell_iol_test(iol.push.linearized_consistency
                  check_linearized_consistency.py injection.prm
                  --set ${coarse_lens}
