@@ -37,10 +37,11 @@ OUT = haptic_rate.OUT
 # the Newton penalty and the linearized penalty with its step filter (the
 # issue's haptic mode), each with its time steps in s, largest first, and
 # settings of its own. The reference is the first mode's last step. The
-# last family is the scene's mode with Newton stopped once a correction
+# fifth family is the scene's mode with Newton stopped once a correction
 # is at most 1 um (the scene's 1e-5 mm asks for 10 nm): mostly one
 # correction a step, as the linearized scheme, but a correction the
-# collision filter shortened is followed by more.
+# collision filter shortened is followed by more. The last two are Newton
+# with the linearized runs' friction floor, at their steps.
 LOOSE = ["Nonlinear solver/Correction tolerance=1e-3"]
 LADDERS = [
     (0, [0.016, 0.008, 0.004, 0.002, 0.001, 0.0005, 0.00025], []),

@@ -11,6 +11,8 @@
 
 #include <coshell/contact/contact.h>
 
+#include <stdexcept>
+
 namespace coshell::contact
 {
   using namespace dealii;
@@ -43,12 +45,15 @@ namespace coshell::contact
                             const FullMatrix<double> &shell_block)
   {
     ForceSlopes &slopes = force_slopes_[pair.obstacle];
-    // The DoFs are the translations x, y, z of the pair's shell points:
-    // column j moves axis j % 3.
+    // The DoFs are the translations x, y, z of the pair's shell points,
+    // so row i is axis i % 3: dF_k/du_j sums the rows of axis k. The block
+    // is symmetric (a contact energy's Hessian, lagged friction's), so
+    // gradients[k] is also H_ss e_k, the shell's answer to the obstacle's
+    // move along axis k, which the input coupling uses.
     for (unsigned int i = 0; i < dofs.size(); ++i)
       for (unsigned int j = 0; j < dofs.size(); ++j)
       {
-        slopes.gradients[j % 3][dofs[i]] += shell_block(i, j);
+        slopes.gradients[i % 3][dofs[j]] += shell_block(i, j);
         slopes.stiffness[i % 3][j % 3] += shell_block(i, j);
       }
   }
@@ -85,6 +90,10 @@ namespace coshell::contact
 
   void Contact::extrapolate_loads(const Vector<double> &correction)
   {
+    if (!slopes_at_last_evaluation_)
+      throw std::logic_error("Contact::extrapolate_loads: the last "
+                             "evaluation assembled no tangent, so the force "
+                             "slopes are not of its state");
     for (unsigned int o = 0; o < loads_.size(); ++o)
       if (force_slopes_[o].gradients[0].size() > 0)
         for (unsigned int k = 0; k < 3; ++k)

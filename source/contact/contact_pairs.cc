@@ -426,6 +426,7 @@ namespace coshell::contact
   {
     const auto start = std::chrono::steady_clock::now();
     reset_pair_records();
+    slopes_at_last_evaluation_ = with_tangent;
     if (with_tangent)
       reset_force_slopes();
     model::DofBlock block;

@@ -359,7 +359,10 @@ namespace coshell::contact
     double                        saved_time_ = 0;
     std::vector<ObstacleLoad>     loads_;
     std::vector<ForceSlopes>      force_slopes_;
-    std::vector<double>           obstacle_work_; ///< up to save()
+    /// Whether the last evaluation assembled the tangent, and with it the
+    /// force slopes.
+    bool                slopes_at_last_evaluation_ = false;
+    std::vector<double> obstacle_work_; ///< up to save()
     /// Per obstacle, its pairs' energy and their force on the shell (DoF
     /// layout), at the last evaluation and at save().
     std::vector<double> potential_per_obstacle_;
