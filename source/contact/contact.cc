@@ -87,9 +87,7 @@ namespace coshell::contact
     // unless follow_force_slopes() asks for every obstacle's.
     force_slopes_.resize(n);
     for (unsigned int o = 0; o < n; ++o)
-      if (parameters_.obstacles[o].input)
-        for (Vector<double> &gradient : force_slopes_[o].gradients)
-          gradient.reinit(model.n_dofs());
+      force_slopes_[o].followed = parameters_.obstacles[o].input != nullptr;
     for (const Obstacle &obstacle : parameters_.obstacles)
       start_centroids_.push_back(centroid(obstacle.positions(0)));
     vertex_gap_.assign(vertices.size(), infinity);

@@ -135,10 +135,11 @@ namespace coshell::contact
       block.vector = 0;
       if (with_tangent)
         block.matrix = 0;
-      add_friction(lagged, with_tangent, block);
+      const Tensor<1, 3> application =
+          add_friction(lagged, with_tangent, block);
       // Friction's block is exact (positive semi-definite as it stands).
       if (with_tangent && follows_force(lagged.pair))
-        add_force_slopes(lagged.pair, block.dofs, block.matrix);
+        add_force_slopes(lagged.pair, block.dofs, block.matrix, application);
       add_shell_force(lagged.pair, block);
       sink(block);
     }
@@ -148,15 +149,16 @@ namespace coshell::contact
   /// step's relative displacement of the first primitive's closest point
   /// against the second's, sum_k w_k (x_k - x_k^saved) with the lagged
   /// weights, and each point k takes w_k times the force.
-  void Contact::add_friction(const NormalForce &lagged,
-                             bool               with_tangent,
-                             model::DofBlock   &block)
+  Tensor<1, 3> Contact::add_friction(const NormalForce &lagged,
+                                     bool               with_tangent,
+                                     model::DofBlock   &block)
   {
     const Pair  &pair = lagged.pair;
     const double mu   = friction_coefficient(pair);
     const double eps  = smoothing_length();
+    Tensor<1, 3> at;
     if (!(eps > 0) || lagged.force == 0)
-      return;
+      return at;
     const Tensor<1, 3>            normal = lagged.normal / lagged.normal.norm();
     const std::array<Point<3>, 4> points =
         pair_points(pair, positions_, other_side(pair));
@@ -186,7 +188,7 @@ namespace coshell::contact
     {
       // The obstacle's share, applied at its closest point.
       ObstacleLoad &load = loads_[pair.obstacle];
-      Tensor<1, 3>  reaction, at;
+      Tensor<1, 3>  reaction;
       for (unsigned int k = 0; k < 4; ++k)
         if (on_obstacle(pair, k))
         {
@@ -199,5 +201,6 @@ namespace coshell::contact
     if (with_tangent)
       add_friction_tangent(w, first, n, mu * lagged.force, {ratio, slope}, u,
                            normal, block.matrix);
+    return at;
   }
 } // namespace coshell::contact

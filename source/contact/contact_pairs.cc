@@ -455,7 +455,7 @@ namespace coshell::contact
       if (with_tangent)
         pair_hessian(energy, shell, block.matrix);
       if (with_tangent && follows_force(pair))
-        add_force_slopes(pair, block.dofs, energy);
+        add_force_slopes(pair, block.dofs, energy, points);
       record_pair(pair, points, energy.gradient, gap, block);
       potential_ += energy.value;
       if (!pair.self)

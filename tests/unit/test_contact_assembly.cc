@@ -1,8 +1,9 @@
 // The contact contribution of a small plate over a rigid plane, assembled
 // as ShellProblem does: its tangent against central differences of its
 // forces, with the barrier and with friction, the equal and opposite
-// force on the obstacle and that force's slopes (what a linearized step
-// reports its force with); the same tangent check for self contact.
+// force on the obstacle and the slopes of its force and moment (what a
+// linearized step reports its load with); the same tangent check for
+// self contact.
 
 #include <coshell/contact/contact.h>
 #include <coshell/io/expressions.h>
@@ -13,6 +14,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <utility>
 
@@ -175,48 +177,70 @@ namespace
     return load;
   }
 
-  /// The obstacle's force slopes at time 1 against central differences of
-  /// its load over every translation of the shell, and the load carried
-  /// along a small move by extrapolate_loads() against the load assembled
-  /// there (second-order close).
+  /// The force (moment: the moment about the origin) and its slopes.
+  dealii::Tensor<1, 3> load_part(const contact::ObstacleLoad &load, bool moment)
+  {
+    return moment ? load.moment : load.force;
+  }
+
+  /// The obstacle's load slopes (force and moment) at time 1 against
+  /// central differences of its load over every translation of the shell,
+  /// and the load carried along a small move by extrapolate_loads()
+  /// against the load assembled there (second-order close).
   void
   expect_force_slopes_match_loads(contact::Contact             &contact,
                                   contact::ContactContribution &contribution,
                                   model::ShellState            &state,
                                   unsigned int                  n)
   {
-    assemble(contribution, state, 1, n);
-    const auto  slopes = contact.force_slopes(0);
-    const auto  load   = contact.obstacle_loads()[0].force;
-    const auto &loads  = contact.obstacle_loads();
-    double      scale  = 0;
-    for (unsigned int k = 0; k < 3; ++k)
-      scale = std::max(scale, slopes.gradients[k].linfty_norm());
-    EXPECT_GT(scale, 0);
-    const double   h = 1e-7;
-    Vector<double> move(n);
-    for (unsigned int j = 0; j < n; ++j)
+    const auto  &loads = contact.obstacle_loads();
+    const double h     = 1e-7;
+    for (const bool moment : {false, true})
     {
-      if (j % 6 >= 3)
-        continue;
-      const auto [plus, minus] =
-          measured_both_ways(contribution, state, n, j, h,
-                             [&](const Assembled &) { return loads[0].force; });
+      assemble(contribution, state, 1, n);
+      std::array<Vector<double>, 3> gradients;
+      double                        scale = 0;
       for (unsigned int k = 0; k < 3; ++k)
-        EXPECT_NEAR((plus[k] - minus[k]) / (2 * h), slopes.gradients[k][j],
-                    1e-5 * scale)
-            << "axis " << k << ", DoF " << j;
-      move[j] = 1e-4 * (1 + j % 5) * (j % 2 ? 1 : -1);
+      {
+        gradients[k] = contact.load_gradient(0, k, moment);
+        scale        = std::max(scale, gradients[k].linfty_norm());
+      }
+      EXPECT_GT(scale, 0);
+      for (unsigned int j = 0; j < n; ++j)
+      {
+        if (j % 6 >= 3)
+          continue;
+        const auto [plus, minus] = measured_both_ways(
+            contribution, state, n, j, h,
+            [&](const Assembled &) { return load_part(loads[0], moment); });
+        for (unsigned int k = 0; k < 3; ++k)
+          EXPECT_NEAR((plus[k] - minus[k]) / (2 * h), gradients[k][j],
+                      1e-5 * scale)
+              << (moment ? "moment" : "force") << " axis " << k << ", DoF "
+              << j;
+      }
     }
     // The extrapolation's error is second order: far below its change.
+    Vector<double> move(n);
+    for (unsigned int j = 0; j < n; ++j)
+      if (j % 6 < 3)
+        move[j] = 1e-4 * (1 + j % 5) * (j % 2 ? 1 : -1);
     assemble(contribution, state, 1, n);
+    const contact::ObstacleLoad start = loads[0];
     contact.extrapolate_loads(move);
-    const auto extrapolated = loads[0].force;
+    const contact::ObstacleLoad extrapolated = loads[0];
     state.apply_increment(move);
     assemble(contribution, state, 1, n);
-    EXPECT_GT((extrapolated - load).norm(), 0);
-    EXPECT_LT((extrapolated - loads[0].force).norm(),
-              0.05 * (extrapolated - load).norm());
+    for (const bool moment : {false, true})
+    {
+      const auto change =
+          load_part(extrapolated, moment) - load_part(start, moment);
+      EXPECT_GT(change.norm(), 0);
+      EXPECT_LT((load_part(extrapolated, moment) - load_part(loads[0], moment))
+                    .norm(),
+                0.05 * change.norm())
+          << (moment ? "moment" : "force");
+    }
     move *= -1;
     state.apply_increment(move);
   }

@@ -162,32 +162,41 @@ namespace coshell::contact
 
     /// Per obstacle, at the last evaluation.
     const std::vector<ObstacleLoad> &obstacle_loads() const;
-    /// The slopes of an obstacle's force, for an obstacle whose force is
+    /// The slopes of an obstacle's load, for an obstacle whose load is
     /// followed (see follow_force_slopes(); an interactive input's driven
-    /// obstacles always are): its contact and friction pairs' exact (not
-    /// projected) blocks H_ss on the shell's translations, applied to the
-    /// unit vectors e_k of the axes at every shell point of the pairs, at
-    /// the last evaluation that assembled the tangent. The pairs' energies
-    /// depend on differences of positions only, so the shell's blocks also
-    /// stand for the obstacle's: the force F the shell exerts on the
-    /// obstacle has dF_k/d(shell) = gradients[k] and, with the shell held,
-    /// dF_k/d(obstacle translation along axis l) = -stiffness[k][l].
-    /// Empty 'gradients' for the obstacles not followed.
+    /// obstacles always are), at the last evaluation that assembled the
+    /// tangent, from its contact and friction pairs' exact (not projected)
+    /// Hessians: how the force F and the moment M (about the origin) that
+    /// the shell exerts on the obstacle change with each shell DoF. The
+    /// pairs' energies depend on differences of positions only, so the
+    /// shell's blocks H_ss also stand for the obstacle's: with the shell
+    /// held, dF_k/d(obstacle translation along axis l) = -stiffness[k][l].
     struct ForceSlopes
     {
-      /// H_ss e_k, DoF layout, N/length.
-      std::array<dealii::Vector<double>, 3> gradients;
-      /// e_k^T H_ss e_l, N/length.
+      bool followed = false;
+      /// dF/du_dof and dM/du_dof of one pair, N/length and N; a DoF may
+      /// appear in several entries, which add.
+      struct Entry
+      {
+        dealii::types::global_dof_index dof;
+        dealii::Tensor<1, 3>            force, moment;
+      };
+      std::vector<Entry> entries;
+      /// e_k^T H_ss e_l summed over the pairs, N/length.
       dealii::Tensor<2, 3> stiffness;
     };
-    /// Follow the force slopes of every obstacle from the next tangent on
-    /// (a linearized step needs them to carry its reported forces to the
+    /// Follow the load slopes of every obstacle from the next tangent on
+    /// (a linearized step needs them to carry its reported loads to the
     /// step's end, see extrapolate_loads()).
     void               follow_force_slopes();
     const ForceSlopes &force_slopes(unsigned int obstacle) const
     {
       return force_slopes_[obstacle];
     }
+    /// d(force or moment component 'axis')/d(shell DoFs) of an obstacle,
+    /// DoF layout (empty for an obstacle not followed).
+    dealii::Vector<double>
+    load_gradient(unsigned int obstacle, unsigned int axis, bool moment) const;
     /// For an obstacle that an interactive input drives (its Input
     /// direction d, the input s moving it by s d): its force slopes along
     /// e = d / |d|. The force F the shell exerts on the obstacle along e
@@ -201,10 +210,11 @@ namespace coshell::contact
     };
     InputCoupling input_coupling(unsigned int obstacle) const;
     /// A linearized step ends without evaluating at its end: the loads
-    /// of the last evaluation, on the obstacles whose slopes are
-    /// followed, become their linearization at the configuration moved by
-    /// 'correction' (DoF layout), F + (dF/d shell) correction. The
-    /// moments, works and gaps stay those of the evaluation.
+    /// of the last evaluation (force and moment), on the obstacles whose
+    /// slopes are followed, become their linearization at the
+    /// configuration moved by 'correction' (DoF layout),
+    /// F + (dF/d shell) correction. The works and gaps stay those of the
+    /// evaluation.
     void extrapolate_loads(const dealii::Vector<double> &correction);
     /// While true, the tangent's pair Hessians are not projected to
     /// positive semi-definite whatever Projected tangent says: the slope
@@ -662,25 +672,30 @@ namespace coshell::contact
     /// eps of friction this step: Stiction velocity times the step, at
     /// least Stiction displacement (length).
     double smoothing_length() const;
-    void   add_friction(const NormalForce &lagged,
-                        bool               with_tangent,
-                        model::DofBlock   &block);
-    void   pair_dofs(const Pair &pair, model::DofBlock &block) const;
-    /// force_slopes_: zeroed before a tangent's pairs, then each block of
+    /// Returns where the obstacle's share of the force acts (0 for a
+    /// self-contact pair or no force).
+    dealii::Tensor<1, 3> add_friction(const NormalForce &lagged,
+                                      bool               with_tangent,
+                                      model::DofBlock   &block);
+    void pair_dofs(const Pair &pair, model::DofBlock &block) const;
+    /// force_slopes_: emptied before a tangent's pairs, then each block of
     /// a followed obstacle's pair (contact_input.cc).
     void reset_force_slopes();
     bool follows_force(const Pair &pair) const;
-    /// 'shell_block': the pair's exact (not projected) Hessian on the
-    /// translations 'dofs' of its shell points.
+    /// A friction pair: 'shell_block', its exact Hessian on the
+    /// translations 'dofs' of its shell points, and 'application', where
+    /// the obstacle's share of the friction force acts.
     void
     add_force_slopes(const Pair                                         &pair,
                      const std::vector<dealii::types::global_dof_index> &dofs,
-                     const dealii::FullMatrix<double> &shell_block);
-    /// The same for a contact pair, from its energy's Hessian.
+                     const dealii::FullMatrix<double> &shell_block,
+                     const dealii::Tensor<1, 3>       &application);
+    /// A contact pair, from its energy's Hessian and its points.
     void
          add_force_slopes(const Pair                                         &pair,
                           const std::vector<dealii::types::global_dof_index> &dofs,
-                          const PairEnergy &energy);
+                          const PairEnergy                                   &energy,
+                          const std::array<dealii::Point<3>, 4> &points);
     void pair_hessian(const PairEnergy           &energy,
                       ShellCoordinates            shell,
                       dealii::FullMatrix<double> &matrix) const;
