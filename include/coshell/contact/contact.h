@@ -162,37 +162,10 @@ namespace coshell::contact
 
     /// Per obstacle, at the last evaluation.
     const std::vector<ObstacleLoad> &obstacle_loads() const;
-    /// The slopes of an obstacle's load, for an obstacle whose load is
-    /// followed (see follow_force_slopes(); an interactive input's driven
-    /// obstacles always are), at the last evaluation that assembled the
-    /// tangent, from its contact and friction pairs' exact (not projected)
-    /// Hessians: how the force F and the moment M (about the origin) that
-    /// the shell exerts on the obstacle change with each shell DoF. The
-    /// pairs' energies depend on differences of positions only, so the
-    /// shell's blocks H_ss also stand for the obstacle's: with the shell
-    /// held, dF_k/d(obstacle translation along axis l) = -stiffness[k][l].
-    struct ForceSlopes
-    {
-      bool followed = false;
-      /// dF/du_dof and dM/du_dof of one pair, N/length and N; a DoF may
-      /// appear in several entries, which add.
-      struct Entry
-      {
-        dealii::types::global_dof_index dof;
-        dealii::Tensor<1, 3>            force, moment;
-      };
-      std::vector<Entry> entries;
-      /// e_k^T H_ss e_l summed over the pairs, N/length.
-      dealii::Tensor<2, 3> stiffness;
-    };
     /// Follow the load slopes of every obstacle from the next tangent on
     /// (a linearized step needs them to carry its reported loads to the
     /// step's end, see extrapolate_loads()).
-    void               follow_force_slopes();
-    const ForceSlopes &force_slopes(unsigned int obstacle) const
-    {
-      return force_slopes_[obstacle];
-    }
+    void follow_force_slopes();
     /// d(force or moment component 'axis')/d(shell DoFs) of an obstacle,
     /// DoF layout (empty for an obstacle not followed).
     dealii::Vector<double>
@@ -283,6 +256,29 @@ namespace coshell::contact
     double        activation_distance() const;
 
   private:
+    /// The slopes of an obstacle's load, for an obstacle whose load is
+    /// followed (see follow_force_slopes(); an interactive input's driven
+    /// obstacles always are), at the last evaluation that assembled the
+    /// tangent, from its contact and friction pairs' exact (not projected)
+    /// Hessians: how the force F and the moment M (about the origin) that
+    /// the shell exerts on the obstacle change with each shell DoF. The
+    /// pairs' energies depend on differences of positions only, so the
+    /// shell's blocks H_ss also stand for the obstacle's: with the shell
+    /// held, dF_k/d(obstacle translation along axis l) = -stiffness[k][l].
+    struct ForceSlopes
+    {
+      bool followed = false;
+      /// dF/du_dof and dM/du_dof of one pair, N/length and N; a DoF may
+      /// appear in several entries, which add.
+      struct Entry
+      {
+        dealii::types::global_dof_index dof;
+        dealii::Tensor<1, 3>            force, moment;
+      };
+      std::vector<Entry> entries;
+      /// e_k^T H_ss e_l summed over the pairs, N/length.
+      dealii::Tensor<2, 3> stiffness;
+    };
     /// A shell vertex against an obstacle triangle (shell_vertex_side), or
     /// an obstacle vertex against a shell triangle.
     /// A self-contact pair is a shell vertex ('shell') against a shell
