@@ -852,7 +852,7 @@ namespace coshell::driver
     run.result.steps = step;
     run.result.newton_iterations += record.iterations;
     record_contact(out, step, record.time);
-    if (output_.wants_step(step))
+    if (output_.wants_step(step, run.ends_stage(record.time)))
       write_step(problem.model(), problem.state(), out, run.directory, step,
                  record.time);
     checkpoint_step(problem, out, run.stage, record.time, run.directory,

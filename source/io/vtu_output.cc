@@ -51,7 +51,8 @@ namespace coshell::io
         "to single precision by deal.II; this table is not (true/false).");
     prm.declare_entry("Steps between outputs", "1", Patterns::Integer(0),
                       "Nonlinear runs: write every n-th converged load step "
-                      "(0: only the last one); a step count "
+                      "and, in dynamic stages, each stage's last step (0: "
+                      "only the run's last one); a step count "
                       "(dimensionless).");
     prm.leave_subsection();
   }
@@ -144,10 +145,10 @@ namespace coshell::io
     write_file_atomically(path, table.str());
   }
 
-  bool VtuOutput::wants_step(unsigned int step) const
+  bool VtuOutput::wants_step(unsigned int step, bool ends_stage) const
   {
     return write_vtu_ && steps_between_output_ > 0 &&
-           step % steps_between_output_ == 0;
+           (ends_stage || step % steps_between_output_ == 0);
   }
 
   void

@@ -46,8 +46,10 @@ namespace coshell::io
                       const std::vector<std::string> &companions = {});
 
     /// Whether nonlinear step 'step' should be written (the last step is
-    /// always written by the caller).
-    bool wants_step(unsigned int step) const;
+    /// always written by the caller). A step that ends a dynamic stage is
+    /// written unless only the run's last one is asked for: each stage's
+    /// end state is in the series, whatever the stride.
+    bool wants_step(unsigned int step, bool ends_stage = false) const;
     bool writes_vtu() const
     {
       return write_vtu_;
