@@ -195,7 +195,8 @@ coshell_scene_test(iol.haptic_compression.corotational_small_load_limit
 # and, that motion undone, each haptic's farthest point still lies over
 # the optic and on top of it. The tools' work equals the lens's strain and
 # kinetic energy, the drag's and friction's dissipation and the barrier's
-# energy within 0.1 %. Draws the tucked and the bent lens and the sequence
+# energy within 0.1 %, and the VTU series holds each stage's last step.
+# Draws the tucked and the bent lens and the sequence
 # into build/tests/output/iol.tuck/png/; about 2 min. The measured values
 # are in doc/validation.md.
 coshell_iol_test(iol.tuck check_tuck.py tuck.prm

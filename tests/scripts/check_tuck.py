@@ -31,8 +31,9 @@ lens's mid-plane and move so that the strip between keeps its length.
     the tuck (the same check);
   - the optic's centre stays within --optic-drift of where it started.
 
-With --figures DIR, draws the tucked lens, the tuck's sequence and, with
-a bend, the bent lens and the whole sequence.
+With --figures DIR, checks that the VTU series holds each stage's last
+step and draws the tucked lens, the tuck's sequence and, with a bend, the
+bent lens and the whole sequence.
 The optic's radius, the haptic's thickness and the optic's thickness
 profile (optic_half_thickness) are tuck.prm's: a run that --sets them
 otherwise must pass them here too.
@@ -220,6 +221,22 @@ def draw(checks, args, tucked_at, end, bent):
            "drawn", all(drawn))
 
 
+def check_stage_ends_written(checks, args, history):
+    """The VTU series holds each stage's last step (Output/Steps between
+    outputs writes it whatever the stride): the tucked lens is drawn at
+    the tuck's end, not at the step written before it."""
+    import xml.etree.ElementTree as ElementTree
+    series = ElementTree.parse(os.path.join(args.output, "solution.pvd"))
+    written = [float(d.get("timestep")) for d in series.iter("DataSet")
+               if d.get("part") == "0"]
+    ends = [float(row["time"]) for k, row in enumerate(history)
+            if k + 1 == len(history) or history[k + 1]["stage"] != row["stage"]]
+    missing = [t for t in ends if not any(abs(w - t) <= 1e-9 * max(1, t)
+                                          for w in written)]
+    checks(f"the VTU series holds each stage's last step (t = "
+           f"{', '.join(f'{t:g}' for t in ends)} s)", not missing)
+
+
 def main():
     args = parse_arguments()
     checks, forces, history = run_contact_scene(
@@ -234,6 +251,7 @@ def main():
         check_bent(checks, history[-1], args)
     check_energy(checks, history, forces, args)
     if args.figures:
+        check_stage_ends_written(checks, args, history)
         draw(checks, args, float(tucked["time"]), float(history[-1]["time"]),
              bent)
     exit_with(checks.failures)
