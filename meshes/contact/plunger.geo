@@ -9,7 +9,7 @@ DefineConstant[
   plunger_radius = 1.35,  // mm
   plunger_length = 3.0,   // mm
   mesh_size = 0.3,        // mm
-  along_y = 0             // 1: along y instead of x
+  along_y = 0             // 1: along y instead of x (a flag)
 ];
 lc = mesh_size;
 // (a, b) is where the rod's axis points, in the xy plane; (-b, a) is

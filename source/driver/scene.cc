@@ -1120,7 +1120,7 @@ namespace coshell::driver
     contact.set_exact_tangent(true);
     try
     {
-      if (time_integration_.method() != "linearized implicit euler")
+      if (!time_integration_.linearized())
         solvers::Newton(path_following_.newton(), linear_solver_)
             .factorize_tangent(problem);
       linear_solver_.solve_with_factors(response, input_load(problem, contact));
@@ -1303,7 +1303,7 @@ namespace coshell::driver
     contact->check_initial_configuration(state, 0);
     // A linearized step reports its obstacles' forces at its end only
     // through their slopes (Contact::extrapolate_loads()).
-    if (time_integration_.method() == "linearized implicit euler")
+    if (time_integration_.linearized())
       contact->follow_force_slopes();
     out.contact = contact.get();
     out.contact_forces.emplace(

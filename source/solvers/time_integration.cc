@@ -393,6 +393,11 @@ namespace coshell::solvers
     return method_;
   }
 
+  bool TimeIntegration::linearized() const
+  {
+    return method_ == "linearized implicit euler";
+  }
+
   double TimeIntegration::energy_growth_limit() const
   {
     return energy_growth_limit_;

@@ -74,7 +74,8 @@ def parse_arguments():
     # little, as each plate meets the biconvex optic near the crease,
     # where it is thickest (measured 0.13 mm on the default lens, 0.11 on
     # the coarse one).
-    parser.add_argument("--rim-tolerance", type=float, default=0.15)
+    parser.add_argument("--rim-tolerance", type=float, default=0.15,
+                        help="mm")
     parser.add_argument("--figures")
     return parser.parse_args()
 

@@ -78,7 +78,10 @@ namespace coshell::solvers
                      const StepCheck         &step_check = {}) const;
 
     const std::string &method() const;
-    double             end_time() const;
+    /// Method = linearized implicit euler: one correction a step, no
+    /// evaluation at the step's end.
+    bool   linearized() const;
+    double end_time() const;
     /// Energy growth limit (dimensionless); 0: the guard is off.
     double energy_growth_limit() const;
     /// Lie group = SE3: body-frame translations (ShellState).
