@@ -5,6 +5,8 @@
 #include <coshell/contact/ccd.h>
 #include <coshell/contact/contact.h>
 
+#include <boost/iterator/function_output_iterator.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -208,20 +210,23 @@ namespace coshell::contact
       double                                      inflation,
       std::vector<unsigned int>                  &edges)
   {
-    std::vector<std::pair<BoundingBox<3>, unsigned>> hits;
-    tree.query(bgi::intersects(box_of(corners, inflation)),
-               std::back_inserter(hits));
     edges.clear();
     // Neighbouring triangles share edges: take each once, without a sort
-    // (which cost more than the query itself).
+    // (which cost more than the query itself). The hits are taken as the
+    // tree finds them, not gathered in a vector first: that vector was
+    // allocated anew for each of the ~800 queries a haptic step makes.
     ++marks.query;
-    for (const auto &hit : hits)
+    const auto take_edges = [&](const std::pair<BoundingBox<3>, unsigned> &hit)
+    {
       for (const unsigned f : triangle_edges[hit.second])
         if (marks.last[f] != marks.query)
         {
           marks.last[f] = marks.query;
           edges.push_back(f);
         }
+    };
+    tree.query(bgi::intersects(box_of(corners, inflation)),
+               boost::make_function_output_iterator(take_edges));
   }
 
   double Contact::edge_offset(unsigned int obstacle, unsigned int e) const

@@ -126,13 +126,13 @@ namespace coshell::contact
   void Contact::add_friction_terms(const model::BlockSink &sink,
                                    bool                    with_tangent)
   {
-    model::DofBlock block;
+    PairBlocks blocks;
     for (const NormalForce &lagged : lagged_normal_forces_)
     {
       if (friction_coefficient(lagged.pair) == 0)
         continue;
-      pair_dofs(lagged.pair, block);
-      block.vector = 0;
+      model::DofBlock &block = pair_dofs(lagged.pair, blocks);
+      block.vector           = 0;
       if (with_tangent)
         block.matrix = 0;
       const Tensor<1, 3> application =

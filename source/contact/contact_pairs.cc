@@ -113,9 +113,12 @@ namespace coshell::contact
       gaps_.resize(n);
       for (unsigned int k = 0; k < n; ++k)
         gaps_[k] = candidates_[k].distance - contact_.offset(found_[k]);
-      const std::vector<bool> keep = contact_.parameters_.local_minima_only
-                                         ? local_minima(candidates_, gaps_)
-                                         : std::vector<bool>(n, true);
+      // Assigned, not made anew: settle() runs once per point or edge.
+      if (contact_.parameters_.local_minima_only)
+        keep_ = local_minima(candidates_, gaps_);
+      else
+        keep_.assign(n, true);
+      const std::vector<bool> &keep = keep_;
       for (unsigned int k = 0; k < n; ++k)
       {
         // Each settle() gathers the pairs of one point or edge, which is
@@ -171,6 +174,7 @@ namespace coshell::contact
     std::vector<Candidate> candidates_;
     std::vector<Pair>      found_;
     std::vector<double>    gaps_;
+    std::vector<bool>      keep_;
   };
 
   void Contact::find_pairs(const std::vector<Point<3>> &x)
@@ -364,10 +368,12 @@ namespace coshell::contact
     return {X[pair.other], x[t[0]], x[t[1]], x[t[2]]};
   }
 
-  void Contact::pair_dofs(const Pair &pair, model::DofBlock &block) const
+  model::DofBlock &Contact::pair_dofs(const Pair &pair,
+                                      PairBlocks &blocks) const
   {
     const unsigned int n_vertices =
         (shell_coordinates(pair).last - shell_coordinates(pair).first) / 3;
+    model::DofBlock &block = blocks[n_vertices];
     block.dofs.resize(3 * n_vertices);
     for (unsigned int i = 0; i < n_vertices; ++i)
     {
@@ -387,6 +393,7 @@ namespace coshell::contact
       block.vector.reinit(block.dofs.size());
       block.matrix.reinit(block.dofs.size(), block.dofs.size());
     }
+    return block;
   }
 } // namespace coshell::contact
 
@@ -429,7 +436,7 @@ namespace coshell::contact
     slopes_at_last_evaluation_ = with_tangent;
     if (with_tangent)
       reset_force_slopes();
-    model::DofBlock block;
+    PairBlocks blocks;
     for (const Pair &pair : pairs_)
     {
       const auto   points   = pair_points(pair, positions_, other_side(pair));
@@ -448,8 +455,8 @@ namespace coshell::contact
       const PairEnergy energy =
           pair_energy(pair, points, s, weight, phi,
                       with_tangent || (pending_ && !pair.self));
-      const auto shell = shell_coordinates(pair);
-      pair_dofs(pair, block);
+      const auto       shell = shell_coordinates(pair);
+      model::DofBlock &block = pair_dofs(pair, blocks);
       for (unsigned int i = shell.first; i < shell.last; ++i)
         block.vector[i - shell.first] = -energy.gradient[i]; // on the shell
       if (with_tangent)
@@ -512,8 +519,10 @@ namespace coshell::contact
                              ShellCoordinates    shell,
                              FullMatrix<double> &matrix) const
   {
-    const unsigned int  n = shell.last - shell.first, first = shell.first;
-    std::vector<double> h(n * n);
+    const unsigned int n = shell.last - shell.first, first = shell.first;
+    // Kept between pairs: a fresh vector per pair showed in the profile.
+    thread_local std::vector<double> h;
+    h.resize(n * n);
     for (unsigned int i = 0; i < n; ++i)
       for (unsigned int j = 0; j < n; ++j)
         h[i * n + j] = energy.hessian[first + i][first + j];

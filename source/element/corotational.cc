@@ -1202,7 +1202,7 @@ namespace coshell::element
     if (tangent != nullptr)
     {
       // The paper's tangent: K_l rotated along the current frame only.
-      *tangent = rotate_to_global(stiffness, as_tensors(jets.frame()));
+      rotate_to_global(stiffness, as_tensors(jets.frame()), *tangent);
     }
   }
 

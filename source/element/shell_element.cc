@@ -108,11 +108,21 @@ namespace coshell::element
   FullMatrix<double> rotate_to_global(const FullMatrix<double>          &local,
                                       const std::array<Tensor<1, 3>, 3> &axes)
   {
+    FullMatrix<double> global;
+    rotate_to_global(local, axes, global);
+    return global;
+  }
+
+  void rotate_to_global(const FullMatrix<double>          &local,
+                        const std::array<Tensor<1, 3>, 3> &axes,
+                        FullMatrix<double>                &global)
+  {
     // T = diag(R, ..., R) with R_ab = (e_a)_b, so each 3x3 block transforms
     // on its own: K_IJ = R^T K_local,IJ R. Block by block this costs 36 x 54
     // multiply-adds instead of the dense 2 x 18^3.
     constexpr unsigned int blocks = shell_dofs / 3;
-    FullMatrix<double>     global(shell_dofs, shell_dofs);
+    if (global.m() != shell_dofs || global.n() != shell_dofs)
+      global.reinit(shell_dofs, shell_dofs);
     for (unsigned int bi = 0; bi < blocks; ++bi)
       for (unsigned int bj = 0; bj < blocks; ++bj)
       {
@@ -130,7 +140,6 @@ namespace coshell::element
             global(3 * bi + r, 3 * bj + c) = sum;
           }
       }
-    return global;
   }
 
   ShellDisplacements to_element_frame(const ElementFrame       &frame,

@@ -6,6 +6,7 @@
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <tuple>
@@ -101,6 +102,8 @@ namespace coshell::model
   void ShellProblem::make_sparsities()
   {
     model_.make_sparsity(homogeneous_, sparsity_, coupled_vertices_);
+    static std::atomic<std::uint64_t> versions{0};
+    sparsity_version_ = ++versions;
     cell_scatter_.invalidate();
     if (!solvers::distributed())
       return;
@@ -116,7 +119,7 @@ namespace coshell::model
     if (distributed_sparsity_)
       tangent.reinit(*distributed_sparsity_);
     else
-      tangent.reinit(sparsity_);
+      tangent.reinit(sparsity_, sparsity_version_);
   }
 
   void ShellProblem::begin_solve()

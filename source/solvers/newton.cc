@@ -181,7 +181,7 @@ namespace coshell::solvers
 
   void Newton::factorize_tangent(NonlinearProblem &problem) const
   {
-    TangentMatrix tangent;
+    TangentMatrix &tangent = tangent_;
     problem.reinit_tangent(tangent);
     assemble_for_solver(problem, tangent);
     Vector<double> residual(problem.sparsity().n_rows());
@@ -303,15 +303,17 @@ namespace coshell::solvers
   /// What a solve carries from one iteration to the next.
   struct Newton::Iterate
   {
-    Iterate(NonlinearProblem &problem, double residual_tolerance)
-        : residual(problem.sparsity().n_rows()),
+    Iterate(NonlinearProblem &problem,
+            double            residual_tolerance,
+            TangentMatrix    &tangent)
+        : tangent(tangent), residual(problem.sparsity().n_rows()),
           trial_residual(residual.size()), step_increment(residual.size()),
           prediction(residual_tolerance)
     {
       problem.reinit_tangent(tangent);
     }
 
-    TangentMatrix  tangent;
+    TangentMatrix &tangent;
     Vector<double> residual, trial_residual;
     /// The sum of the corrections applied in this solve.
     Vector<double> step_increment;
@@ -333,7 +335,7 @@ namespace coshell::solvers
                              const Observer   &observer) const
   {
     problem.begin_solve();
-    Iterate it(problem, parameters_.residual_tolerance);
+    Iterate it(problem, parameters_.residual_tolerance, tangent_);
     assemble_for_solver(problem, it.tangent);
     for (unsigned int iteration = 0;; ++iteration)
     {
@@ -442,7 +444,7 @@ namespace coshell::solvers
                                    const Observer   &observer) const
   {
     problem.begin_solve();
-    TangentMatrix tangent;
+    TangentMatrix &tangent = tangent_;
     problem.reinit_tangent(tangent);
     assemble_for_solver(problem, tangent);
     Vector<double> residual(problem.sparsity().n_rows());

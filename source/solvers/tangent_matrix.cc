@@ -11,13 +11,29 @@ namespace coshell::solvers
     trilinos_pattern_ = nullptr;
     trilinos_.reset();
     serial_.reinit(pattern);
-    lower_only_ = false;
+    versioned_pattern_ = nullptr;
+    lower_only_        = false;
     mirrors_.clear();
+  }
+
+  void TangentMatrix::reinit(const SparsityPattern &pattern,
+                             std::uint64_t          version)
+  {
+    if (versioned_pattern_ == &pattern && pattern_version_ == version &&
+        !distributed())
+    {
+      lower_only_ = false; // the mirrors of the same pattern stay valid
+      return;
+    }
+    reinit(pattern);
+    versioned_pattern_ = &pattern;
+    pattern_version_   = version;
   }
 
   void TangentMatrix::reinit(const TrilinosWrappers::SparsityPattern &pattern)
   {
-    trilinos_pattern_ = &pattern;
+    trilinos_pattern_  = &pattern;
+    versioned_pattern_ = nullptr;
     serial_.clear();
     trilinos_.reset();
   }

@@ -105,3 +105,38 @@ TEST(TangentMatrix, BuildsAFreshMatrixOnItsPatternOnceTheLastIsTaken)
   EXPECT_EQ(tangent.trilinos().el(2, 3), 0.0);
   EXPECT_THROW(tangent.serial(), std::logic_error);
 }
+
+// A Newton keeps its tangent from one solve to the next: on the same pattern
+// at the same version its storage stays (what it holds is the last
+// assembly's, which the next zero() clears); a new version, or another
+// pattern, makes it anew on that pattern.
+TEST(TangentMatrix, KeepsItsStorageWhileThePatternVersionStays)
+{
+  SparsityPattern first, second;
+  first.copy_from(full_pattern());
+  DynamicSparsityPattern diagonal(n, n);
+  for (unsigned int i = 0; i < n; ++i)
+    diagonal.add(i, i);
+  second.copy_from(diagonal);
+
+  TangentMatrix tangent;
+  tangent.reinit(first, 7);
+  tangent.serial().set(2, 3, 1.5);
+  const double *storage = &tangent.serial()(0, 0);
+  tangent.set_lower_only(true);
+
+  tangent.reinit(first, 7);
+  EXPECT_EQ(&tangent.serial()(0, 0), storage);
+  EXPECT_EQ(tangent.serial()(2, 3), 1.5);
+  EXPECT_FALSE(tangent.lower_only());
+  tangent.zero();
+  EXPECT_EQ(tangent.serial()(2, 3), 0.0);
+
+  tangent.serial().set(2, 3, 1.5);
+  tangent.reinit(first, 8); // the same object made again: a new version
+  EXPECT_EQ(tangent.serial()(2, 3), 0.0);
+
+  tangent.reinit(second, 8);
+  EXPECT_EQ(&tangent.serial().get_sparsity_pattern(), &second);
+  EXPECT_EQ(tangent.serial().n_nonzero_elements(), n);
+}

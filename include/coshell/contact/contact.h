@@ -673,7 +673,13 @@ namespace coshell::contact
     dealii::Tensor<1, 3> add_friction(const NormalForce &lagged,
                                       bool               with_tangent,
                                       model::DofBlock   &block);
-    void pair_dofs(const Pair &pair, model::DofBlock &block) const;
+    /// Blocks reused across the pairs of an evaluation, one per number of
+    /// the pair's shell vertices (1 to 4): one block sized to each pair in
+    /// turn was allocated anew whenever the kind of pair changed, nearly
+    /// once a pair.
+    using PairBlocks = std::array<model::DofBlock, 5>;
+    /// The block of 'blocks' for the pair, holding the pair's shell DoFs.
+    model::DofBlock &pair_dofs(const Pair &pair, PairBlocks &blocks) const;
     /// force_slopes_: emptied before a tangent's pairs, then each block of
     /// a followed obstacle's pair (contact_input.cc).
     void reset_force_slopes();

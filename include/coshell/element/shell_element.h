@@ -48,6 +48,12 @@ namespace coshell::element
   /// R, u_local = R u_global).
   FullMatrix<double> rotate_to_global(const FullMatrix<double>          &local,
                                       const std::array<Tensor<1, 3>, 3> &axes);
+  /// The same into 'global' (sized 18x18 if it is not), without allocating:
+  /// the co-rotational element's paper tangent does this once per cell and
+  /// evaluation.
+  void rotate_to_global(const FullMatrix<double>          &local,
+                        const std::array<Tensor<1, 3>, 3> &axes,
+                        FullMatrix<double>                &global);
 
   /// Linear flat-shell stiffness in global axes: membrane and bending
   /// assembled in the element frame (make_element_frame) and rotated with

@@ -12,6 +12,7 @@
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
 
 #include <array>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -153,6 +154,10 @@ namespace coshell::model
     std::vector<std::unique_ptr<Contribution>> contributions_;
     PrescribedIncrementFunction                prescribed_;
     dealii::SparsityPattern                    sparsity_;
+    /// Names sparsity_'s present contents for the tangents kept across
+    /// solves (solvers::TangentMatrix::reinit): new, unique in the
+    /// process, each time it is made.
+    std::uint64_t sparsity_version_ = 0;
     /// Under mpirun: this rank's rows of the same pattern.
     std::unique_ptr<dealii::TrilinosWrappers::SparsityPattern>
          distributed_sparsity_;

@@ -87,6 +87,11 @@ namespace coshell::solvers
   private:
     NewtonParameters parameters_;
     LinearSolver    &linear_solver_;
+    /// The tangent every solve assembles into, kept from one solve to the
+    /// next: a time step's solve would otherwise allocate and zero a
+    /// matrix of the whole pattern before assembling (and zeroing) it.
+    /// Made again only when the problem's pattern changes.
+    mutable TangentMatrix tangent_;
 
     /// Lets the problem assemble only what the linear solver reads.
     void assemble_for_solver(const NonlinearProblem &problem,

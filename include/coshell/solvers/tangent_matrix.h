@@ -6,6 +6,7 @@
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
 
+#include <cstdint>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -23,6 +24,14 @@ namespace coshell::solvers
   public:
     /// One rank: a matrix on 'pattern', which must outlive this.
     void reinit(const dealii::SparsityPattern &pattern);
+    /// The same, where 'version' names the pattern's present contents
+    /// (unique in the process, new whenever the pattern is made again):
+    /// a matrix already on that pattern at that version keeps its storage
+    /// and its values, which the next zero() clears. A Newton keeps its
+    /// tangent so from one solve to the next: made anew each time step,
+    /// the 1.2 MB matrix of the IOL lens was allocated, zeroed and freed
+    /// on top of the assembly's own zeroing.
+    void reinit(const dealii::SparsityPattern &pattern, std::uint64_t version);
     /// Several ranks: this rank's rows of a matrix on 'pattern' (compressed,
     /// with the rows the rank writes to), which must outlive this.
     void reinit(const dealii::TrilinosWrappers::SparsityPattern &pattern);
@@ -54,7 +63,11 @@ namespace coshell::solvers
     const dealii::TrilinosWrappers::SparsityPattern *trilinos_pattern_ =
         nullptr;
     dealii::SparseMatrix<double> serial_;
-    bool                         lower_only_ = false;
+    /// The pattern and version serial_ was last made on by the versioned
+    /// reinit() (null: none, or the unversioned one).
+    const dealii::SparsityPattern *versioned_pattern_ = nullptr;
+    std::uint64_t                  pattern_version_   = 0;
+    bool                           lower_only_        = false;
     /// Value-array positions of each entry below the diagonal and of its
     /// mirror, found at the first mirror_lower() after reinit() (once per
     /// Newton solve that falls back to UMFPACK).
