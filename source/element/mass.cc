@@ -19,27 +19,37 @@ namespace coshell::element
     return m;
   }
 
+  MassEntries shell_mass_entries(const SpatialTriangle &triangle,
+                                 const MassProperties  &mass)
+  {
+    const double A          = area(triangle);
+    const double areal_mass = mass.density * mass.thickness * A;
+    MassEntries  entries;
+    for (unsigned int a = 0; a < 3; ++a)
+      for (unsigned int b = 0; b < 3; ++b)
+        // Integral of L_a L_b over the triangle: A/12 (1 + delta_ab).
+        entries.translational[a][b] =
+            areal_mass * (mass.type == MassMatrix::lumped
+                              ? (a == b ? 1.0 / 3 : 0.0)
+                              : (a == b ? 2.0 / 12 : 1.0 / 12));
+    entries.rotary = vertex_rotary_inertia(A, mass);
+    return entries;
+  }
+
   void shell_mass(const SpatialTriangle &triangle,
                   const MassProperties  &mass,
                   FullMatrix<double>    &m)
   {
-    const double A          = area(triangle);
-    const double areal_mass = mass.density * mass.thickness * A;
+    const MassEntries entries = shell_mass_entries(triangle, mass);
     m.reinit(18, 18);
     for (unsigned int a = 0; a < 3; ++a)
+    {
       for (unsigned int b = 0; b < 3; ++b)
-      {
-        // Integral of L_a L_b over the triangle: A/12 (1 + delta_ab).
-        const double weight = mass.type == MassMatrix::lumped
-                                  ? (a == b ? 1.0 / 3 : 0.0)
-                                  : (a == b ? 2.0 / 12 : 1.0 / 12);
         for (unsigned int d = 0; d < 3; ++d)
-          m(6 * a + d, 6 * b + d) = weight * areal_mass;
-      }
-    const double rotary = vertex_rotary_inertia(A, mass);
-    for (unsigned int a = 0; a < 3; ++a)
+          m(6 * a + d, 6 * b + d) = entries.translational[a][b];
       for (unsigned int d = 0; d < 3; ++d)
-        m(6 * a + 3 + d, 6 * a + 3 + d) = rotary;
+        m(6 * a + 3 + d, 6 * a + 3 + d) = entries.rotary;
+    }
   }
 
   FullMatrix<double> drag_matrix(const SpatialTriangle &triangle,

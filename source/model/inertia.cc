@@ -281,11 +281,192 @@ namespace coshell::model
     }
   } // namespace
 
+  namespace
+  {
+    /// A cell matrix of the mass's structure by its entries that may be
+    /// nonzero, row by row, columns ascending: the mass has 36 of its 324
+    /// entries, the damping alpha M plus the drag at most 54. Its products
+    /// take the same terms in the same order as the dense ones, less the
+    /// zeros, so they give the same numbers; they run once per cell and
+    /// evaluation, where the dense 18x18 products and their zeroing were
+    /// a twelfth of a haptic step.
+    class SparseCellMatrix
+    {
+    public:
+      /// M: m_ab I between the translations of vertices a and b, the rotary
+      /// inertia on each rotation.
+      explicit SparseCellMatrix(const element::MassEntries &mass)
+      {
+        for (unsigned int a = 0; a < 3; ++a)
+        {
+          for (unsigned int d = 0; d < 3; ++d, end_row())
+            for (unsigned int b = 0; b < 3; ++b)
+              add(6 * b + d, mass.translational[a][b]);
+          for (unsigned int d = 0; d < 3; ++d, end_row())
+            add(6 * a + 3 + d, mass.rotary);
+        }
+      }
+      /// C = alpha M + the drag's 9x9 translational block of each vertex
+      /// ('drag' null: none), entry by entry as Inertia::damping() sums
+      /// them: alpha m first, then the drag.
+      SparseCellMatrix(double                            alpha,
+                       const element::MassEntries       &mass,
+                       const dealii::FullMatrix<double> *drag)
+      {
+        for (unsigned int a = 0; a < 3; ++a)
+        {
+          for (unsigned int d = 0; d < 3; ++d, end_row())
+            for (unsigned int b = 0; b < 3; ++b)
+              for (unsigned int e = 0; e < 3; ++e)
+              {
+                const bool mass_part = alpha > 0 && e == d,
+                           drag_part = drag && b == a;
+                if (!mass_part && !drag_part)
+                  continue; // zero in C too
+                double value = mass_part ? alpha * mass.translational[a][b] : 0;
+                if (drag_part)
+                  value += (*drag)(3 * a + d, 3 * a + e);
+                add(6 * b + e, value);
+              }
+          for (unsigned int d = 0; d < 3; ++d, end_row())
+            add(6 * a + 3 + d, alpha > 0 ? alpha * mass.rotary : 0);
+        }
+      }
+      /// out_i -= sum_j A_ij r_j (or += with 'sign' = 1), term by term.
+      template<typename Out>
+      void add_times(double                                         sign,
+                     const std::array<double, element::shell_dofs> &rates,
+                     Out                                           &out) const
+      {
+        for (unsigned int i = 0, k = 0; i < element::shell_dofs; ++i)
+          for (; k < row_end_[i]; ++k)
+          {
+            if (sign < 0)
+              out[i] -= value_[k] * rates[column_[k]];
+            else
+              out[i] += value_[k] * rates[column_[k]];
+          }
+      }
+      /// matrix += coefficient A.
+      void add_to(double coefficient, dealii::FullMatrix<double> &matrix) const
+      {
+        for (unsigned int i = 0, k = 0; i < element::shell_dofs; ++i)
+          for (; k < row_end_[i]; ++k)
+            matrix(i, column_[k]) += coefficient * value_[k];
+      }
+
+    private:
+      std::array<unsigned char, element::shell_dofs> row_end_{};
+      std::array<unsigned char, 54>                  column_{};
+      std::array<double, 54>                         value_{};
+      unsigned int                                   size_ = 0, row_ = 0;
+
+      void add(unsigned int column, double value)
+      {
+        Assert(size_ < value_.size(), dealii::ExcInternalError());
+        column_[size_]  = column;
+        value_[size_++] = value;
+      }
+      void end_row()
+      {
+        row_end_[row_++] = size_;
+      }
+    };
+
+    using CellRates = std::array<double, element::shell_dofs>;
+
+    /// Adds a cell's momenta and kinetic energy, from its vertices'
+    /// positions, spatial velocities and momenta M v.
+    void add_kinetic_measures(const element::SpatialTriangle &current,
+                              const CellRates                &velocity,
+                              const CellRates                &momentum,
+                              KineticMeasures                &result)
+    {
+      for (unsigned int v = 0; v < 3; ++v)
+      {
+        Tensor<1, 3> p, spin_momentum;
+        for (unsigned int d = 0; d < 3; ++d)
+        {
+          p[d]             = momentum[6 * v + d];
+          spin_momentum[d] = momentum[6 * v + 3 + d];
+        }
+        result.linear_momentum += p;
+        result.angular_momentum +=
+            cross_product_3d(current[v], p) + spin_momentum;
+      }
+      for (unsigned int i = 0; i < element::shell_dofs; ++i)
+        result.kinetic_energy += 0.5 * velocity[i] * momentum[i];
+    }
+
+    /// A cell's entries of a global vector, by kernel index.
+    struct GlobalEntries
+    {
+      Vector<double>     &vector;
+      const CellIterator &cell;
+      double             &operator[](unsigned int i)
+      {
+        return vector[cell->vertex_dof_index(i / 6, i % 6)];
+      }
+    };
+
+    /// The damping and drag of a cell of the mass's structure (no
+    /// stiffness-proportional damping), as Inertia::damping() makes it.
+    SparseCellMatrix sparse_damping(const InertiaParameters        &parameters,
+                                    const element::SpatialTriangle &current,
+                                    const element::MassEntries     &mass,
+                                    dealii::FullMatrix<double>     &drag)
+    {
+      const bool dragged =
+          parameters.normal_drag > 0 || parameters.tangential_drag > 0;
+      if (dragged)
+        element::drag_matrix(current, parameters.normal_drag,
+                             parameters.tangential_drag, drag);
+      return SparseCellMatrix(parameters.rayleigh_alpha, mass,
+                              dragged ? &drag : nullptr);
+    }
+  } // namespace
+
+  bool Inertia::sparse_cell_matrices(const ShellState &state) const
+  {
+    // Body-frame translations turn the rates' Jacobian; stiffness-
+    // proportional damping fills C.
+    return !state.body_frame_translations() && parameters_.rayleigh_beta == 0;
+  }
+
+  void Inertia::add_sparse_cell(const CellIterator    &cell,
+                                const EvaluationPoint &point,
+                                CellContribution      &contribution,
+                                bool                   with_tangent) const
+  {
+    const ShellState &state = point.state;
+    const auto entries      = element::shell_mass_entries(model_.triangle(cell),
+                                                          mass_properties(cell));
+    const SparseCellMatrix mass(entries);
+    mass.add_times(-1, spatial_rates(cell, state, Rate::acceleration),
+                   contribution.vector);
+    if (with_tangent)
+      mass.add_to(point.acceleration_coefficient, contribution.matrix);
+    if (!parameters_.damped())
+      return;
+    const SparseCellMatrix c =
+        sparse_damping(parameters_, current_triangle(model_, cell, state),
+                       entries, cell_matrices().drag);
+    c.add_times(-1, spatial_rates(cell, state, Rate::velocity),
+                contribution.vector);
+    if (with_tangent && !point.rate_mass)
+      c.add_to(point.velocity_coefficient, contribution.matrix);
+  }
+
   void Inertia::add_cell(const CellIterator    &cell,
                          const EvaluationPoint &point,
                          CellContribution      &contribution,
                          bool                   with_tangent) const
   {
+    if (sparse_cell_matrices(point.state))
+    {
+      add_sparse_cell(cell, point, contribution, with_tangent);
+      return;
+    }
     const ShellState   &state    = point.state;
     CellMatrices       &matrices = cell_matrices();
     FullMatrix<double> &mass     = matrices.mass;
@@ -357,29 +538,31 @@ namespace coshell::model
       *damping_force = 0;
     CellMatrices       &matrices = cell_matrices();
     FullMatrix<double> &mass     = matrices.mass;
+    const bool          sparse   = sparse_cell_matrices(state);
     for (const auto &cell : model_.dof_handler().active_cell_iterators())
     {
-      element::shell_mass(model_.triangle(cell), mass_properties(cell), mass);
       const auto velocity = spatial_rates(cell, state, Rate::velocity);
       const auto current  = current_triangle(model_, cell, state);
       std::array<double, element::shell_dofs> momentum{};
+      if (sparse)
+      {
+        const auto entries = element::shell_mass_entries(model_.triangle(cell),
+                                                         mass_properties(cell));
+        SparseCellMatrix(entries).add_times(1, velocity, momentum);
+        if (parameters_.damped() && damping_force)
+        {
+          GlobalEntries force{*damping_force, cell};
+          sparse_damping(parameters_, current, entries, matrices.drag)
+              .add_times(1, velocity, force);
+        }
+        add_kinetic_measures(current, velocity, momentum, result);
+        continue;
+      }
+      element::shell_mass(model_.triangle(cell), mass_properties(cell), mass);
       for (unsigned int i = 0; i < element::shell_dofs; ++i)
         for (unsigned int j = 0; j < element::shell_dofs; ++j)
           momentum[i] += mass(i, j) * velocity[j];
-      for (unsigned int v = 0; v < 3; ++v)
-      {
-        Tensor<1, 3> p, spin_momentum;
-        for (unsigned int d = 0; d < 3; ++d)
-        {
-          p[d]             = momentum[6 * v + d];
-          spin_momentum[d] = momentum[6 * v + 3 + d];
-        }
-        result.linear_momentum += p;
-        result.angular_momentum +=
-            cross_product_3d(current[v], p) + spin_momentum;
-      }
-      for (unsigned int i = 0; i < element::shell_dofs; ++i)
-        result.kinetic_energy += 0.5 * velocity[i] * momentum[i];
+      add_kinetic_measures(current, velocity, momentum, result);
       if (parameters_.damped() && damping_force)
       {
         FullMatrix<double> &c = matrices.damping;

@@ -101,3 +101,33 @@ TEST(DragMatrix, SplitsNormalAndTangentialVelocity)
       EXPECT_NEAR(tangential_force, third * ct * t[i], 1e-14);
     }
 }
+
+// The entries the inertia's sparse products take are all of the matrix: the
+// matrix built from them alone has every nonzero entry of the dense one
+// with its value, and nothing else (both mass types).
+TEST(ShellMass, EntriesAreTheWholeMatrix)
+{
+  for (const MassMatrix type : {MassMatrix::consistent, MassMatrix::lumped})
+  {
+    const auto        m       = shell_mass(triangle, properties(type));
+    const MassEntries entries = shell_mass_entries(triangle, properties(type));
+    const double      mass    = 2.0 * 0.05 * reference_area();
+    for (unsigned int i = 0; i < 18; ++i)
+      for (unsigned int j = 0; j < 18; ++j)
+      {
+        const unsigned int a = i / 6, b = j / 6, d = i % 6, e = j % 6;
+        double             expected = 0;
+        if (d < 3 && d == e)
+          expected = entries.translational[a][b];
+        else if (d >= 3 && i == j)
+          expected = entries.rotary;
+        EXPECT_EQ(m(i, j), expected) << i << ", " << j;
+      }
+    // All the pair weights together: the whole mass rho h A.
+    double total = 0;
+    for (const auto &row : entries.translational)
+      for (const double w : row)
+        total += w;
+    EXPECT_NEAR(total, mass, 1e-14 * mass);
+  }
+}

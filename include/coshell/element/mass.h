@@ -10,6 +10,8 @@
 
 #include <deal.II/lac/full_matrix.h>
 
+#include <array>
+
 namespace coshell::element
 {
   enum class MassMatrix
@@ -29,6 +31,19 @@ namespace coshell::element
 
   /// The rotary inertia of one vertex: factor * rho h^3 / 12 * A / 3.
   double vertex_rotary_inertia(double area, const MassProperties &mass);
+
+  /// The few distinct entries of the mass matrix below: 'translational'[a][b]
+  /// times the 3x3 identity couples the translations of vertices a and b,
+  /// 'rotary' is each rotation's diagonal entry (no other entry is
+  /// nonzero). An 18x18 product with the matrix is 27 + 9 multiply-adds
+  /// with these.
+  struct MassEntries
+  {
+    std::array<std::array<double, 3>, 3> translational{};
+    double                               rotary = 0;
+  };
+  MassEntries shell_mass_entries(const SpatialTriangle &triangle,
+                                 const MassProperties  &mass);
 
   /// 18x18 mass matrix of the triangle in global axes, DoF order 6*vertex +
   /// component (translations then rotations). Translational rows give the

@@ -105,6 +105,15 @@ namespace coshell::model
                              const EvaluationPoint            &point,
                              const dealii::FullMatrix<double> &mass,
                              dealii::FullMatrix<double>       &matrix) const;
+    /// Whether the cell matrices have the mass's structure at 'state' (no
+    /// body-frame translations, no stiffness-proportional damping): then
+    /// add_cell() and measures() take only their nonzero entries.
+    bool sparse_cell_matrices(const ShellState &state) const;
+    /// add_cell() where sparse_cell_matrices() holds.
+    void add_sparse_cell(const CellIterator    &cell,
+                         const EvaluationPoint &point,
+                         CellContribution      &contribution,
+                         bool                   with_tangent) const;
     /// The damping and drag matrix C of the cell into 'c' ('drag': room
     /// for the drag's 9x9 block).
     void damping(const CellIterator               &cell,
