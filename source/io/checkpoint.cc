@@ -1,6 +1,8 @@
 #include <coshell/io/checkpoint.h>
 #include <coshell/solvers/parallel_environment.h>
 
+#include "hdf5_reader.h"
+
 #include <deal.II/base/hdf5.h>
 #include <deal.II/lac/full_matrix.h>
 
@@ -25,25 +27,6 @@ namespace coshell::io
         file.create_dataset<double>(name, {vector.size()}).write(vector);
     }
 
-    bool has_dataset(const HDF5::File &file, const std::string &name)
-    {
-      return file.get_attribute<unsigned int>("has_" + name) != 0;
-    }
-
-    Vector<double> read_vector(const HDF5::File  &file,
-                               const std::string &name,
-                               std::size_t        size)
-    {
-      if (!has_dataset(file, name))
-        return {};
-      auto result = file.open_dataset(name).read<Vector<double>>();
-      if (size != 0 && result.size() != size)
-        throw std::invalid_argument(
-            "dataset '" + name + "' has " + std::to_string(result.size()) +
-            " entries, expected " + std::to_string(size));
-      return result;
-    }
-
     void write_rotations(HDF5::File                      &file,
                          const std::vector<Tensor<2, 3>> &rotations)
     {
@@ -55,18 +38,6 @@ namespace coshell::io
           .write(matrix);
     }
 
-    std::vector<Tensor<2, 3>> read_rotations(const HDF5::File &file)
-    {
-      const auto matrix =
-          file.open_dataset("rotations").read<FullMatrix<double>>();
-      if (matrix.n() != 9)
-        throw std::invalid_argument("dataset 'rotations' must have 9 columns");
-      std::vector<Tensor<2, 3>> rotations(matrix.m());
-      for (unsigned int v = 0; v < matrix.m(); ++v)
-        for (unsigned int k = 0; k < 9; ++k)
-          rotations[v][k / 3][k % 3] = matrix(v, k);
-      return rotations;
-    }
   } // namespace
 
   namespace
@@ -87,22 +58,6 @@ namespace coshell::io
       file.set_attribute("arrays", index);
     }
 
-    std::map<std::string, std::vector<double>>
-    read_arrays(const HDF5::File &file)
-    {
-      std::map<std::string, std::vector<double>> arrays;
-      std::istringstream index(file.get_attribute<std::string>("arrays"));
-      std::string        entry;
-      while (std::getline(index, entry, ','))
-      {
-        const auto        colon = entry.rfind(':');
-        const std::string name  = entry.substr(0, colon);
-        arrays[name]            = {};
-        if (std::stoul(entry.substr(colon + 1)) > 0)
-          arrays[name] = file.open_dataset(name).read<std::vector<double>>();
-      }
-      return arrays;
-    }
   } // namespace
 
   void write_checkpoint(const Checkpoint &checkpoint, const std::string &path)
@@ -146,26 +101,75 @@ namespace coshell::io
 
   namespace
   {
-    Checkpoint read_fields(const HDF5::File &file)
+    Vector<double> read_vector(const Hdf5Reader  &file,
+                               const std::string &name,
+                               std::size_t        size)
     {
-      Checkpoint c;
-      if (file.get_attribute<std::string>("format") != checkpoint_format)
+      if (file.attribute<unsigned int>("has_" + name) == 0)
+        return {};
+      const std::vector<double> values = file.dataset<double>(name);
+      if (size != 0 && values.size() != size)
+        throw std::invalid_argument(
+            "dataset '" + name + "' has " + std::to_string(values.size()) +
+            " entries, expected " + std::to_string(size));
+      return Vector<double>(values.begin(), values.end());
+    }
+
+    std::vector<Tensor<2, 3>> read_rotations(const Hdf5Reader &file)
+    {
+      std::vector<unsigned int> shape;
+      const auto matrix = file.dataset<double>("rotations", &shape);
+      if (shape.size() != 2 || shape[1] != 9)
+        throw std::invalid_argument("dataset 'rotations' must have 9 columns");
+      std::vector<Tensor<2, 3>> rotations(shape[0]);
+      for (unsigned int v = 0; v < shape[0]; ++v)
+        for (unsigned int k = 0; k < 9; ++k)
+          rotations[v][k / 3][k % 3] = matrix[9 * v + k];
+      return rotations;
+    }
+
+    std::map<std::string, std::vector<double>>
+    read_arrays(const Hdf5Reader &file)
+    {
+      std::map<std::string, std::vector<double>> arrays;
+      std::istringstream index(file.string_attribute("arrays"));
+      std::string        entry;
+      while (std::getline(index, entry, ','))
+      {
+        const auto        colon = entry.rfind(':');
+        const std::string name  = entry.substr(0, colon);
+        arrays[name]            = {};
+        if (std::stoul(entry.substr(colon + 1)) > 0)
+          arrays[name] = file.dataset<double>(name);
+      }
+      return arrays;
+    }
+
+    /// The scalars and the names of the run's state.
+    void read_scalars(const Hdf5Reader &file, Checkpoint &c)
+    {
+      if (file.string_attribute("format") != checkpoint_format)
         throw std::invalid_argument("not a CoShell checkpoint (attribute "
                                     "'format' is not '" +
                                     std::string(checkpoint_format) + "')");
-      c.prm_file     = file.get_attribute<std::string>("prm_file");
-      c.stage        = file.get_attribute<unsigned int>("stage");
-      c.step         = file.get_attribute<unsigned int>("step");
-      c.last_written = file.get_attribute<unsigned int>("last_written");
-      c.pvd_entries  = file.get_attribute<unsigned int>("pvd_entries");
-      c.time         = file.get_attribute<double>("time");
-      c.step_size    = file.get_attribute<double>("step_size");
-      c.converged_force_scale =
-          file.get_attribute<double>("converged_force_scale");
-      c.external_work     = file.get_attribute<double>("external_work");
-      c.dissipated_energy = file.get_attribute<double>("dissipated_energy");
+      c.prm_file              = file.string_attribute("prm_file");
+      c.stage                 = file.attribute<unsigned int>("stage");
+      c.step                  = file.attribute<unsigned int>("step");
+      c.last_written          = file.attribute<unsigned int>("last_written");
+      c.pvd_entries           = file.attribute<unsigned int>("pvd_entries");
+      c.time                  = file.attribute<double>("time");
+      c.step_size             = file.attribute<double>("step_size");
+      c.converged_force_scale = file.attribute<double>("converged_force_scale");
+      c.external_work         = file.attribute<double>("external_work");
+      c.dissipated_energy     = file.attribute<double>("dissipated_energy");
       c.body_frame_translations =
-          file.get_attribute<unsigned int>("body_frame_translations") != 0;
+          file.attribute<unsigned int>("body_frame_translations") != 0;
+    }
+
+    Checkpoint read_fields(const Hdf5Reader &file)
+    {
+      Checkpoint c;
+      read_scalars(file, c);
       c.values              = read_vector(file, "values", 0);
       const std::size_t n   = c.values.size();
       c.velocity            = read_vector(file, "velocity", n);
@@ -175,9 +179,8 @@ namespace coshell::io
       c.damping_force       = read_vector(file, "damping_force", n);
       c.rotations           = read_rotations(file);
       c.arrays              = read_arrays(file);
-      if (has_dataset(file, "csv_rows"))
-        c.csv_rows =
-            file.open_dataset("csv_rows").read<std::vector<unsigned int>>();
+      if (file.attribute<unsigned int>("has_csv_rows") != 0)
+        c.csv_rows = file.dataset<unsigned int>("csv_rows");
       if (n == 0 || c.velocity.size() != n || !(c.step_size > 0))
         throw std::invalid_argument(
             "incomplete: it needs 'values', 'velocity' and a positive "
@@ -188,33 +191,17 @@ namespace coshell::io
 
   namespace
   {
-    /// What a checkpoint lacks, checked with HDF5's C interface: deal.II's
-    /// wrappers do not check in release builds and crash on a missing
-    /// attribute. "" when complete.
-    std::string missing_parts(const std::string &path)
+    /// What a checkpoint lacks, "" when complete: checked first, so that
+    /// a foreign file is refused with all of it at once.
+    std::string missing_parts(const Hdf5Reader &file)
     {
-      const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
-      if (file < 0)
-        return "HDF5 cannot open it";
+      if (!file.has_attribute("format"))
+        return "attribute 'format'";
+      if (!file.has_string_attribute("format"))
+        return "attribute 'format' as a string";
       std::string missing;
       const auto  note = [&](const std::string &what)
       { missing += (missing.empty() ? "" : ", ") + what; };
-      if (H5Aexists(file, "format") <= 0)
-        note("attribute 'format'");
-      else
-      {
-        const hid_t attribute = H5Aopen(file, "format", H5P_DEFAULT);
-        const hid_t type      = H5Aget_type(attribute);
-        if (H5Tget_class(type) != H5T_STRING || H5Tis_variable_str(type) <= 0)
-          note("attribute 'format' as a string");
-        H5Tclose(type);
-        H5Aclose(attribute);
-      }
-      if (!missing.empty()) // not ours at all: the rest would be noise
-      {
-        H5Fclose(file);
-        return missing;
-      }
       for (const char *name :
            {"prm_file", "stage", "step", "last_written", "pvd_entries", "time",
             "step_size", "converged_force_scale", "external_work",
@@ -222,13 +209,12 @@ namespace coshell::io
             "has_velocity", "has_acceleration", "has_pseudo_acceleration",
             "has_generalized_force", "has_damping_force", "has_csv_rows",
             "arrays"})
-        if (H5Aexists(file, name) <= 0)
+        if (!file.has_attribute(name))
           note(std::string("attribute '") + name + "'");
       for (const char *name :
            {"values", "velocity", "acceleration", "rotations"})
-        if (H5Lexists(file, name, H5P_DEFAULT) <= 0)
+        if (!file.has_dataset(name))
           note(std::string("dataset '") + name + "'");
-      H5Fclose(file);
       return missing;
     }
   } // namespace
@@ -243,32 +229,17 @@ namespace coshell::io
     H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
     if (H5Fis_hdf5(path.c_str()) <= 0)
       throw std::invalid_argument(where + "not an HDF5 file");
-    if (const std::string missing = missing_parts(path); !missing.empty())
-      throw std::invalid_argument(
-          where + "not a CoShell checkpoint, it lacks " + missing);
-    // deal.II's HDF5 objects abort the program when destroyed while an
-    // exception is in flight, so errors are caught inside the file's scope
-    // and thrown after it closed.
-    Checkpoint  checkpoint;
-    std::string problem;
+    try
     {
-      const HDF5::File file(path, HDF5::File::FileAccessMode::open);
-      try
-      {
-        checkpoint = read_fields(file);
-      }
-      catch (const std::invalid_argument &error)
-      {
-        problem = error.what();
-      }
-      catch (const std::exception &)
-      {
-        problem = "not a readable CoShell checkpoint (a dataset or "
-                  "attribute is missing or of the wrong type)";
-      }
+      const Hdf5Reader file(path);
+      if (const std::string missing = missing_parts(file); !missing.empty())
+        throw std::invalid_argument("not a CoShell checkpoint, it lacks " +
+                                    missing);
+      return read_fields(file);
     }
-    if (!problem.empty())
-      throw std::invalid_argument(where + problem);
-    return checkpoint;
+    catch (const std::invalid_argument &error)
+    {
+      throw std::invalid_argument(where + error.what());
+    }
   }
 } // namespace coshell::io

@@ -8,7 +8,10 @@ check_restart.py --coshell BIN --prm FILE --output DIR [--set A/B=v ...]
 1. Run A to T with Output/Checkpoint interval = DT.  Every checkpoint holds
    the datasets and attributes a restart needs (read with h5py), its
    rotation matrices are orthonormal, and its time is past a multiple of DT.
-2. Run B from A's middle checkpoint: B's final checkpoint equals A's to TOL
+2. Run B from A's middle checkpoint, which h5py holds open meanwhile (as
+   a second run restarting from the same file would; until 2026-12-02 the
+   restart opened it for writing, which HDF5's lock refused, and crashed):
+   B's final checkpoint equals A's to TOL
    (relative, every dataset), and B's time_history.csv has A's rows (the
    earlier ones copied, the later ones recomputed; 12 printed digits), as
    have its contact_forces.csv where A wrote it and each --force-file.
@@ -265,7 +268,8 @@ def main():
     with h5py.File(written[-1], "r") as f:
         steps = int(f.attrs["step"])
 
-    resume_and_compare(args, a, b, middle, final, timing, "B")
+    with h5py.File(middle, "r"):
+        resume_and_compare(args, a, b, middle, final, timing, "B")
 
     status, message = interrupt_half_way(args, c, steps, timing)
     named = re.search(r"checkpoint written to (\S+);", message)
