@@ -17,6 +17,7 @@
 #include <coshell/contact/distances.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -668,12 +669,11 @@ namespace coshell::contact
     return fraction;
   }
 
-  void
-  Contact::self_couplings(const model::ShellState                  &state,
-                          std::vector<std::array<unsigned int, 2>> &pairs) const
+  std::uint64_t
+  Contact::update_self_couplings(const model::ShellState &state) const
   {
     if (!parameters_.self_contact)
-      return;
+      return 0;
     // Pairs that may come within reach during the step: a margin of the
     // largest thickness (the candidate lists' own margin is too narrow
     // for the steps of a quasi-static roll-up). A pair that comes closer
@@ -720,7 +720,11 @@ namespace coshell::contact
                 coupling_pairs_.push_back({v, w});
         }
       coupling_positions_ = std::move(x);
+      // Unique in the process: a problem that outlives this contact (or
+      // gathers from two) cannot take a new list for one it has seen.
+      static std::atomic<std::uint64_t> generations{0};
+      coupling_generation_ = ++generations;
     }
-    pairs.insert(pairs.end(), coupling_pairs_.begin(), coupling_pairs_.end());
+    return coupling_generation_;
   }
 } // namespace coshell::contact

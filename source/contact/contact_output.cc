@@ -114,11 +114,17 @@ namespace coshell::contact
     contact_.prepare(point.state, point.time);
   }
 
+  std::uint64_t ContactContribution::update_coupled_vertices(
+      const model::EvaluationPoint &point) const
+  {
+    return contact_.update_self_couplings(point.state);
+  }
+
   void ContactContribution::coupled_vertices(
-      const model::EvaluationPoint             &point,
       std::vector<std::array<unsigned int, 2>> &pairs) const
   {
-    contact_.self_couplings(point.state, pairs);
+    const auto &couplings = contact_.self_couplings();
+    pairs.insert(pairs.end(), couplings.begin(), couplings.end());
   }
 
   bool ContactContribution::couples_beyond_cells() const

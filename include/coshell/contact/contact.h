@@ -157,8 +157,14 @@ namespace coshell::contact
     /// anew only once the shell has moved a quarter of that margin, less
     /// a common translation, since they were last found (before, the
     /// same list), so the pattern keeps half its margin for the step.
-    void self_couplings(const model::ShellState                  &state,
-                        std::vector<std::array<unsigned int, 2>> &pairs) const;
+    /// Brings the list up to date; returns its generation, which changes
+    /// each time the list is found anew (0 without self contact).
+    std::uint64_t update_self_couplings(const model::ShellState &state) const;
+    /// The list of the last update_self_couplings().
+    const std::vector<std::array<unsigned int, 2>> &self_couplings() const
+    {
+      return coupling_pairs_;
+    }
 
     /// Per obstacle, at the last evaluation.
     const std::vector<ObstacleLoad> &obstacle_loads() const;
@@ -337,6 +343,7 @@ namespace coshell::contact
     /// self_couplings(): where the shell was when they were found.
     mutable std::vector<dealii::Point<3>>            coupling_positions_;
     mutable std::vector<std::array<unsigned int, 2>> coupling_pairs_;
+    mutable std::uint64_t                            coupling_generation_ = 0;
     double                               kappa_ = 0, activation_ = 0;
     std::vector<unsigned int>            shell_vertices_; ///< used
     std::vector<double>                  shell_vertex_area_;
@@ -754,9 +761,10 @@ namespace coshell::contact
                                 const model::BlockSink       &sink,
                                 bool                          with_tangent) override;
     void             prepare(const model::EvaluationPoint &point) override;
-    void             coupled_vertices(
-                    const model::EvaluationPoint             &point,
-                    std::vector<std::array<unsigned int, 2>> &pairs) const override;
+    std::uint64_t
+    update_coupled_vertices(const model::EvaluationPoint &point) const override;
+    void coupled_vertices(
+        std::vector<std::array<unsigned int, 2>> &pairs) const override;
     bool   couples_beyond_cells() const override;
     bool   pending() const override;
     double admissible_fraction(

@@ -7,6 +7,7 @@
 #include <deal.II/lac/vector.h>
 
 #include <array>
+#include <cstdint>
 #include <functional>
 #include <vector>
 
@@ -92,12 +93,19 @@ namespace coshell::model
     {
     }
 
-    /// Pairs of mesh vertices whose translations this contribution may
-    /// couple in the coming solve beyond the cells' own (self contact),
-    /// so that the tangent's pattern can hold them.
+    /// Brings up to date, for the coming solve at 'point', the pairs of
+    /// mesh vertices whose translations this contribution may couple
+    /// beyond the cells' own (self contact), so that the tangent's pattern
+    /// can hold them; returns the list's generation, which changes only
+    /// when the list may have (0: no list).
+    virtual std::uint64_t
+    update_coupled_vertices(const EvaluationPoint & /*point*/) const
+    {
+      return 0;
+    }
+    /// Appends the pairs of the last update_coupled_vertices().
     virtual void
-    coupled_vertices(const EvaluationPoint & /*point*/,
-                     std::vector<std::array<unsigned int, 2>> & /*pairs*/) const
+    coupled_vertices(std::vector<std::array<unsigned int, 2>> & /*pairs*/) const
     {
     }
     /// Whether add_blocks() may couple vertices of different cells.

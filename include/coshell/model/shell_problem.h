@@ -163,9 +163,9 @@ namespace coshell::model
          distributed_sparsity_;
     void make_sparsities();
     /// The extra vertex couplings sparsity_ was built with, sorted, and
-    /// as the contributions gave them.
+    /// the generations of the contributions' lists they came from.
     std::vector<std::array<unsigned int, 2>> coupled_vertices_;
-    std::vector<std::array<unsigned int, 2>> gathered_couplings_;
+    std::vector<std::uint64_t>               coupling_generations_;
     mutable dealii::FullMatrix<double>       trimmed_;
     /// Adds contact blocks where no DoF is constrained (free-flying
     /// scenes).
