@@ -76,8 +76,8 @@ namespace coshell::driver
 
   void Scene::restart_from(const std::string &file)
   {
-    // deal.II opens HDF5 files for writing, which locks them: the ranks
-    // read in turn.
+    // The ranks read in turn, as when deal.II's reader took the file's
+    // write lock; reading is now shared, and the file small.
     io::Checkpoint checkpoint;
     solvers::one_rank_at_a_time([&]
                                 { checkpoint = io::read_checkpoint(file); });

@@ -241,5 +241,10 @@ namespace coshell::io
     {
       throw std::invalid_argument(where + error.what());
     }
+    catch (const std::exception &error) // a size out of range, say
+    {
+      throw std::invalid_argument(
+          where + "not a readable CoShell checkpoint (" + error.what() + ")");
+    }
   }
 } // namespace coshell::io

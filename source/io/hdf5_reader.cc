@@ -111,6 +111,10 @@ namespace coshell::io
     if (!has_string_attribute(name))
       throw bad_part("attribute", name, "is not a string");
     const Handle attribute = open_attribute(file_, name);
+    const Handle space(H5Aget_space(attribute.get()), H5Sclose);
+    // Several strings would be written past the one pointer below.
+    if (!space.valid() || H5Sget_simple_extent_npoints(space.get()) != 1)
+      throw bad_part("attribute", name, "is not a single string");
     const Handle type(H5Tcopy(H5T_C_S1), H5Tclose);
     H5Tset_size(type.get(), H5T_VARIABLE);
     H5Tset_cset(type.get(), H5T_CSET_UTF8);

@@ -218,8 +218,9 @@ def check_interactive(args, reference, final, timing):
 
 
 def check_bad_files(args, good):
-    """A foreign HDF5 file and a checkpoint missing a dataset are refused
-    with a message naming the file and what is missing."""
+    """A foreign HDF5 file, a checkpoint missing a dataset and one whose
+    'format' holds two strings are refused with a message naming the file
+    and what is wrong."""
     foreign = os.path.join(args.output, "foreign.h5")
     with h5py.File(foreign, "w") as f:
         f["x"] = [1.0]
@@ -227,8 +228,15 @@ def check_bad_files(args, good):
     shutil.copy(good, damaged)
     with h5py.File(damaged, "a") as f:
         del f["velocity"]
+    # Two strings where one is read: they once overran the reader's buffer.
+    listed = os.path.join(args.output, "listed.h5")
+    shutil.copy(good, listed)
+    with h5py.File(listed, "a") as f:
+        f.attrs["format"] = [str(f.attrs["format"]), "again"]
     for path, expected in [(foreign, "lacks attribute 'format'"),
-                           (damaged, "lacks dataset 'velocity'")]:
+                           (damaged, "lacks dataset 'velocity'"),
+                           (listed, "attribute 'format' is not a single "
+                            "string")]:
         result = subprocess.run(
             [args.coshell, args.prm, "--restart", path, "--output",
              os.path.join(args.output, "refused")],

@@ -103,7 +103,9 @@ namespace coshell::model
     {
       return 0;
     }
-    /// Appends the pairs of the last update_coupled_vertices().
+    /// Appends the pairs of the last update_coupled_vertices(). A
+    /// contribution with such a list overrides both: ShellProblem reads
+    /// the lists again only when a generation changed.
     virtual void
     coupled_vertices(std::vector<std::array<unsigned int, 2>> & /*pairs*/) const
     {
