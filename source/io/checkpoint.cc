@@ -38,10 +38,6 @@ namespace coshell::io
           .write(matrix);
     }
 
-  } // namespace
-
-  namespace
-  {
     /// Attribute "arrays" lists "name:size" of each; empty ones have no
     /// dataset.
     void write_arrays(HDF5::File                                       &file,
@@ -57,7 +53,6 @@ namespace coshell::io
       }
       file.set_attribute("arrays", index);
     }
-
   } // namespace
 
   void write_checkpoint(const Checkpoint &checkpoint, const std::string &path)
