@@ -341,7 +341,7 @@ namespace coshell::driver
                                 const std::string                 &directory)
     {
       std::ostringstream csv;
-      csv << "qoi,load_factor,value\n" << std::setprecision(12);
+      csv << "qoi,load_factor,value\n" << std::setprecision(io::csv_digits);
       for (const auto &[name, curve] : quantities.reference_curves())
         for (const auto &[factor, value] : curve)
           csv << name << ',' << factor << ',' << value << '\n';
@@ -505,7 +505,8 @@ namespace coshell::driver
 
     phase = std::chrono::steady_clock::now();
     std::ostringstream csv;
-    csv << "mode,frequency_hz,omega_rad_s\n" << std::setprecision(12);
+    csv << "mode,frequency_hz,omega_rad_s\n"
+        << std::setprecision(io::csv_digits);
     for (unsigned int k = 0; k < modes.size(); ++k)
     {
       const double omega = std::sqrt(std::max(eigenvalues[k], 0.0));

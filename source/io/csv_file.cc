@@ -30,7 +30,7 @@ namespace coshell::io
     out_.open(path + ".partial");
     if (!out_)
       throw std::runtime_error("cannot write '" + path + ".partial'");
-    out_ << header_ << '\n' << std::setprecision(12);
+    out_ << header_ << '\n' << std::setprecision(csv_digits);
   }
 
   unsigned int CsvFile::rows() const

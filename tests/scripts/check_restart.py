@@ -13,7 +13,7 @@ check_restart.py --coshell BIN --prm FILE --output DIR [--set A/B=v ...]
    restart opened it for writing, which HDF5's lock refused, and crashed):
    B's final checkpoint equals A's to TOL
    (relative, every dataset), and B's time_history.csv has A's rows (the
-   earlier ones copied, the later ones recomputed; 12 printed digits), as
+   earlier ones copied, the later ones recomputed; 17 printed digits), as
    have its contact_forces.csv where A wrote it and each --force-file.
 3. Run C to T and stop it with SIGINT half-way: exit status 3, a checkpoint
    named in its message, no summary.json and no finished time_history.csv.

@@ -108,7 +108,7 @@ def print_gaps_by_obstacle(forces):
 
 def force_file_check(output, name, obstacle, direction, column):
     """Contact/Obstacle k/Force file 'name' against the obstacle's rows of
-    contact_forces.csv (both written by one run, 12 digits): its header
+    contact_forces.csv (both written by one run, 17 digits): its header
     is 'time,<column>,force_n' and each row is the time, the obstacle's
     displacement (ux, uy, uz) along the unit 'direction' and minus its
     force (fx, fy, fz) along it. A consistency check of two outputs.

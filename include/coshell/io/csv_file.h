@@ -1,11 +1,19 @@
 #pragma once
 
 #include <fstream>
+#include <limits>
 #include <string>
 #include <vector>
 
 namespace coshell::io
 {
+  /// Significant digits of every number in a CSV result: enough to read
+  /// back the double that was written. Fewer turn a round-off difference
+  /// of 1e-16 into one unit of the last printed digit, 3e-12 relative at
+  /// 12 digits and 3e-10 at 10, which is coarser than the 1e-12 and 1e-10
+  /// by which the tests compare two runs that must agree to round-off.
+  constexpr int csv_digits = std::numeric_limits<double>::max_digits10;
+
   /// A CSV result file written row by row to PATH.partial and renamed to
   /// PATH by finish(), so a run that fails leaves no file that looks
   /// complete (the .partial file stays for diagnosis).
@@ -14,7 +22,7 @@ namespace coshell::io
   public:
     CsvFile(const std::string &path, const std::vector<std::string> &columns);
 
-    /// Writes one row (12 significant digits) and flushes it, so that a
+    /// Writes one row (csv_digits significant digits) and flushes it, so that a
     /// long run can be watched.
     void row(const std::vector<double> &values);
     /// Closes and renames the file.
