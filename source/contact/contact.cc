@@ -185,7 +185,14 @@ namespace coshell::contact
 
   void Contact::rebuild_tree(unsigned int obstacle)
   {
-    obstacle_trees_[obstacle] = obstacle_triangle_tree(obstacle, nullptr);
+    obstacle_trees_[obstacle].reset();
+  }
+
+  const Contact::Tree &Contact::obstacle_tree(unsigned int o) const
+  {
+    if (!obstacle_trees_[o])
+      obstacle_trees_[o] = obstacle_triangle_tree(o, nullptr);
+    return *obstacle_trees_[o];
   }
 
   Contact::Tree
@@ -461,7 +468,7 @@ namespace coshell::contact
                         target_time_,
                         trial_current_,
                         current_,
-                        std::vector<Tree>(current_.size()),
+                        std::vector<std::optional<Tree>>(current_.size()),
                         pending_,
                         pairs_};
     pending_ = trial_pending_;

@@ -310,7 +310,7 @@ namespace coshell::contact
     Tree        swept_obstacle;
     if (dX)
       swept_obstacle = obstacle_triangle_tree(o, dX);
-    const Tree &obstacle_tree = dX ? swept_obstacle : obstacle_trees_[o];
+    const Tree &obstacle_tree = dX ? swept_obstacle : this->obstacle_tree(o);
     Hits        hits;
     auto       &vertex_triangle = c.vertex_triangle[o];
     vertex_triangle.clear();

@@ -633,14 +633,14 @@ namespace coshell::driver
   void
   Scene::write_history_row(const model::ShellProblem                  &problem,
                            const solvers::TimeIntegration::StepRecord &record,
-                           const model::KineticMeasures               &kinetic,
                            unsigned int                                stage,
                            StagedOutput                               &out,
                            io::LevelResult                            &result,
                            std::optional<double> known_strain_energy) const
   {
-    const auto  &state         = problem.state();
-    const auto  *internal      = problem.find<model::InternalForce>();
+    const auto  &state    = problem.state();
+    const auto  *internal = problem.find<model::InternalForce>();
+    const auto   kinetic  = problem.find<model::Inertia>()->measures(state);
     const double strain_energy = known_strain_energy
                                      ? *known_strain_energy
                                      : internal->strain_energy(state);
@@ -783,7 +783,7 @@ namespace coshell::driver
     problem.evaluate(residual, nullptr);
     working_forces(problem, out.generalized_force);
     out.damping_force.reinit(n);
-    inertia->measures(state, &out.damping_force);
+    inertia->damping_force(state, out.damping_force);
     if (out.contact)
       out.contact_force = problem.force(model::ForceKind::contact);
     const auto *internal = problem.find<model::InternalForce>();
@@ -806,7 +806,7 @@ namespace coshell::driver
                         time_integration_.energy_growth_limit());
   }
 
-  model::KineticMeasures Scene::account_step_energies(DynamicStageRun &run)
+  void Scene::account_step_energies(DynamicStageRun &run)
   {
     auto           &out = run.out;
     Vector<double> &g = run.working_force, &q = run.increment;
@@ -815,9 +815,8 @@ namespace coshell::driver
     run.problem.state().step_displacement(q);
     out.external_work += 0.5 * ((g * q) + (out.generalized_force * q));
     out.generalized_force = g;
-    const model::KineticMeasures kinetic =
-        run.problem.find<model::Inertia>()->measures(run.problem.state(),
-                                                     &run.damping_force);
+    run.problem.find<model::Inertia>()->damping_force(run.problem.state(),
+                                                      run.damping_force);
     out.dissipated_energy +=
         0.5 * ((run.damping_force * q) + (out.damping_force * q));
     // Friction's dissipation over the step (0 without friction).
@@ -825,7 +824,6 @@ namespace coshell::driver
       out.dissipated_energy += out.contact->step_friction_dissipation();
     out.damping_force = run.damping_force;
     add_contact_work(run.problem, q, out);
-    return kinetic;
   }
 
   void
@@ -835,17 +833,17 @@ namespace coshell::driver
     auto              &out     = run.out;
     const auto        &problem = run.problem;
     const unsigned int step    = ++out.step;
-    const auto         kinetic = account_step_energies(run);
+    account_step_energies(run);
     // Output/Steps between history rows: the stage's last step has a row
     // too, written before a checkpoint of that step records the rows. An
     // interactive run that stops inside the stage writes its last step's
     // row when it stops (finish_dynamic_stage).
     if (step % steps_between_history_rows_ == 0 || run.ends_stage(record.time))
     {
-      write_history_row(
-          problem, record, kinetic, run.stage.number, out, run.result,
-          run.guard ? run.guard->accepted_strain_energy(record.time)
-                    : std::nullopt);
+      write_history_row(problem, record, run.stage.number, out, run.result,
+                        run.guard
+                            ? run.guard->accepted_strain_energy(record.time)
+                            : std::nullopt);
       run.unwritten_row.reset();
     }
     else
@@ -867,10 +865,8 @@ namespace coshell::driver
   {
     auto &result = run.result;
     if (run.unwritten_row)
-      write_history_row(
-          run.problem, *run.unwritten_row,
-          run.problem.find<model::Inertia>()->measures(run.problem.state()),
-          run.stage.number, run.out, result);
+      write_history_row(run.problem, *run.unwritten_row, run.stage.number,
+                        run.out, result);
     result.simulated_time_s += reached - run.from;
     if (run.guard)
       result.energy_guard_rejections =

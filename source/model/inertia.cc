@@ -398,15 +398,27 @@ namespace coshell::model
         result.kinetic_energy += 0.5 * velocity[i] * momentum[i];
     }
 
-    /// A cell's entries of a global vector, by kernel index.
-    struct GlobalEntries
+    /// A cell's entries of a global vector, by kernel index. The indices
+    /// are looked up once: a sparse cell matrix visits each row up to nine
+    /// times, and deal.II's vertex_dof_index() was a third of the cost of
+    /// Inertia::damping_force().
+    class GlobalEntries
     {
-      Vector<double>     &vector;
-      const CellIterator &cell;
-      double             &operator[](unsigned int i)
+    public:
+      GlobalEntries(Vector<double> &vector, const CellIterator &cell)
+          : vector_(vector)
       {
-        return vector[cell->vertex_dof_index(i / 6, i % 6)];
+        for (unsigned int i = 0; i < element::shell_dofs; ++i)
+          dofs_[i] = cell->vertex_dof_index(i / 6, i % 6);
       }
+      double &operator[](unsigned int i)
+      {
+        return vector_[dofs_[i]];
+      }
+
+    private:
+      Vector<double>                                          &vector_;
+      std::array<types::global_dof_index, element::shell_dofs> dofs_;
     };
 
     /// The damping and drag of a cell of the mass's structure (no
@@ -530,53 +542,65 @@ namespace coshell::model
     }
   }
 
-  KineticMeasures Inertia::measures(const ShellState &state,
-                                    Vector<double>   *damping_force) const
+  KineticMeasures Inertia::measures(const ShellState &state) const
   {
-    KineticMeasures result;
-    if (damping_force)
-      *damping_force = 0;
-    CellMatrices       &matrices = cell_matrices();
-    FullMatrix<double> &mass     = matrices.mass;
-    const bool          sparse   = sparse_cell_matrices(state);
+    KineticMeasures     result;
+    FullMatrix<double> &mass   = cell_matrices().mass;
+    const bool          sparse = sparse_cell_matrices(state);
+    for (const auto &cell : model_.dof_handler().active_cell_iterators())
+    {
+      const auto velocity = spatial_rates(cell, state, Rate::velocity);
+      std::array<double, element::shell_dofs> momentum{};
+      if (sparse)
+        SparseCellMatrix(element::shell_mass_entries(model_.triangle(cell),
+                                                     mass_properties(cell)))
+            .add_times(1, velocity, momentum);
+      else
+      {
+        element::shell_mass(model_.triangle(cell), mass_properties(cell), mass);
+        for (unsigned int i = 0; i < element::shell_dofs; ++i)
+          for (unsigned int j = 0; j < element::shell_dofs; ++j)
+            momentum[i] += mass(i, j) * velocity[j];
+      }
+      add_kinetic_measures(current_triangle(model_, cell, state), velocity,
+                           momentum, result);
+    }
+    return result;
+  }
+
+  void Inertia::damping_force(const ShellState &state,
+                              Vector<double>   &force) const
+  {
+    force = 0;
+    if (!parameters_.damped())
+      return;
+    CellMatrices &matrices = cell_matrices();
+    const bool    sparse   = sparse_cell_matrices(state);
     for (const auto &cell : model_.dof_handler().active_cell_iterators())
     {
       const auto velocity = spatial_rates(cell, state, Rate::velocity);
       const auto current  = current_triangle(model_, cell, state);
-      std::array<double, element::shell_dofs> momentum{};
       if (sparse)
       {
-        const auto entries = element::shell_mass_entries(model_.triangle(cell),
-                                                         mass_properties(cell));
-        SparseCellMatrix(entries).add_times(1, velocity, momentum);
-        if (parameters_.damped() && damping_force)
-        {
-          GlobalEntries force{*damping_force, cell};
-          sparse_damping(parameters_, current, entries, matrices.drag)
-              .add_times(1, velocity, force);
-        }
-        add_kinetic_measures(current, velocity, momentum, result);
+        GlobalEntries global(force, cell);
+        sparse_damping(parameters_, current,
+                       element::shell_mass_entries(model_.triangle(cell),
+                                                   mass_properties(cell)),
+                       matrices.drag)
+            .add_times(1, velocity, global);
         continue;
       }
-      element::shell_mass(model_.triangle(cell), mass_properties(cell), mass);
+      element::shell_mass(model_.triangle(cell), mass_properties(cell),
+                          matrices.mass);
+      FullMatrix<double> &c = matrices.damping;
+      damping(cell, current, matrices.mass, c, matrices.drag);
       for (unsigned int i = 0; i < element::shell_dofs; ++i)
-        for (unsigned int j = 0; j < element::shell_dofs; ++j)
-          momentum[i] += mass(i, j) * velocity[j];
-      add_kinetic_measures(current, velocity, momentum, result);
-      if (parameters_.damped() && damping_force)
       {
-        FullMatrix<double> &c = matrices.damping;
-        damping(cell, current, mass, c, matrices.drag);
-        for (unsigned int i = 0; i < element::shell_dofs; ++i)
-        {
-          double &force =
-              (*damping_force)[cell->vertex_dof_index(i / 6, i % 6)];
-          for (unsigned int j = 0; j < element::shell_dofs; ++j)
-            force += c(i, j) * velocity[j];
-        }
+        double &entry = force[cell->vertex_dof_index(i / 6, i % 6)];
+        for (unsigned int j = 0; j < element::shell_dofs; ++j)
+          entry += c(i, j) * velocity[j];
       }
     }
-    return result;
   }
 
   void Inertia::set_initial_velocity(ShellState &state) const

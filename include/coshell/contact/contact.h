@@ -365,8 +365,13 @@ namespace coshell::contact
     /// Each obstacle's friction coefficient at target_time_.
     std::vector<double>                        obstacle_friction_;
     std::vector<std::vector<dealii::Point<3>>> current_, saved_, target_;
-    std::vector<Tree>                          obstacle_trees_;
-    std::vector<Pair>                          pairs_;
+    /// Each obstacle's tree where it is now (current_), built by
+    /// obstacle_tree() when a search first needs it after the obstacle
+    /// moved: a moving obstacle (the plunger) moves at every evaluation,
+    /// while the candidate lists that search the tree are kept over many
+    /// steps (building it at each move was 3 % of a haptic step).
+    mutable std::vector<std::optional<Tree>> obstacle_trees_;
+    std::vector<Pair>                        pairs_;
     std::vector<dealii::Point<3>> positions_;       ///< shell, at prepare()
     std::vector<dealii::Point<3>> saved_positions_; ///< at save()
     double                        saved_time_ = 0;
@@ -414,9 +419,9 @@ namespace coshell::contact
       double                                     target_time = 0;
       std::vector<std::vector<dealii::Point<3>>> obstacles_before;
       std::vector<std::vector<dealii::Point<3>>> obstacles_after;
-      std::vector<Tree> trees_after; ///< of the obstacles that moved
-      bool              pending = false;
-      std::vector<Pair> pairs;
+      std::vector<std::optional<Tree>> trees_after; ///< of those that moved
+      bool                             pending = false;
+      std::vector<Pair>                pairs;
     };
     std::optional<Detection> trial_detection_;
     /// Takes the trial's detection if its inputs are the present ones.
@@ -653,9 +658,12 @@ namespace coshell::contact
     swept_shell_box(const std::vector<dealii::Point<3>>     &x,
                     const std::vector<dealii::Tensor<1, 3>> *dx) const;
     std::vector<dealii::Point<3>>
-           shell_positions(const model::ShellState &state) const;
-    void   rebuild_tree(unsigned int obstacle);
-    double max_reach() const;
+    shell_positions(const model::ShellState &state) const;
+    /// Marks obstacle o's tree for a rebuild where it is now.
+    void rebuild_tree(unsigned int obstacle);
+    /// Obstacle o's tree where it is now (built if marked).
+    const Tree &obstacle_tree(unsigned int o) const;
+    double      max_reach() const;
     /// Boxes of the shell triangles (swept by dx if given), inflated. The
     /// pair searches use them uninflated and inflate their query boxes
     /// by what each query point must reach: a thin rim or haptic does not

@@ -198,11 +198,11 @@ namespace coshell::driver
     /// Appends the dynamic step's row to time_history.csv (energies,
     /// momenta, the contact's work and energy, the quantities of interest)
     /// and keeps its quantities as the level's. 'known_strain_energy':
-    /// the state's, if the energy guard computed it already.
+    /// the state's, if the energy guard computed it already. The kinetic
+    /// measures are computed here, for the rows only.
     void write_history_row(
         const model::ShellProblem                  &problem,
         const solvers::TimeIntegration::StepRecord &record,
-        const model::KineticMeasures               &kinetic,
         unsigned int                                stage,
         StagedOutput                               &out,
         io::LevelResult                            &result,
@@ -221,11 +221,11 @@ namespace coshell::driver
     /// with its time history, contact rows, VTU, checkpoints and replies.
     void run_dynamic_stage(DynamicStageRun &run);
     /// The dynamic stage's parts: the forces at its start (or the
-    /// restart's) and its energy guard; the work, dissipation and kinetic
-    /// measures of a converged step; the step's rows, files, checkpoint
-    /// and reply; and the pending row and totals at its end.
-    void                          begin_dynamic_stage(DynamicStageRun &run);
-    static model::KineticMeasures account_step_energies(DynamicStageRun &run);
+    /// restart's) and its energy guard; the work and dissipation of a
+    /// converged step; the step's rows, files, checkpoint and reply; and
+    /// the pending row and totals at its end.
+    void        begin_dynamic_stage(DynamicStageRun &run);
+    static void account_step_energies(DynamicStageRun &run);
     void
          record_dynamic_step(DynamicStageRun                            &run,
                              const solvers::TimeIntegration::StepRecord &record);

@@ -60,11 +60,14 @@ namespace coshell::model
                          bool                   with_tangent) const override;
     bool        symmetric_tangent() const override;
 
-    /// Kinetic energy and momenta; with 'damping_force' (sized n_dofs) also
-    /// the force C v of the damping and drag, unconstrained, global axes.
-    KineticMeasures
-    measures(const ShellState       &state,
-             dealii::Vector<double> *damping_force = nullptr) const;
+    /// Kinetic energy and momenta.
+    KineticMeasures measures(const ShellState &state) const;
+    /// The force C v of the damping and drag (sized n_dofs), unconstrained,
+    /// global axes; zero without them. Apart from measures(): a dynamic
+    /// stage needs this force every step for the dissipated energy, the
+    /// kinetic measures only on the rows of its time history.
+    void damping_force(const ShellState       &state,
+                       dealii::Vector<double> &force) const;
 
     /// Sets the velocities of 'state' from the initial-velocity expressions.
     void set_initial_velocity(ShellState &state) const;
