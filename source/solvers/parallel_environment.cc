@@ -178,24 +178,23 @@ namespace coshell::solvers
 
     // omp_set_num_threads does not bound a region that names its own
     // thread count: Debian's CHOLMOD (SuiteSparse 5.12) asks for
-    // CHOLMOD_OMP_NUM_THREADS = 4 in its supernodal factorization, and on
-    // one thread those wake-ups and futex waits cost more than the
+    // CHOLMOD_OMP_NUM_THREADS = 4 in its supernodal factorization. On one
+    // thread those wake-ups and futex waits cost more than the
     // factorization (Sze's hemisphere with the symmetric tangent: 24 % of
-    // the samples in the kernel's scheduler). With one thread no OpenMP
-    // region may be active (max-active-levels 0); with 2 or 3, fewer than
-    // CHOLMOD's 4, libgomp's dynamic adjustment caps a region at the idle
-    // cores. Both are settings of the calling thread (GCC 12), the one the
-    // solvers run on.
-    void limit_openmp_regions(unsigned int threads)
+    // the samples in the kernel's scheduler). On two threads libgomp's
+    // team spun against OpenBLAS's and the cells' threads: on an Intel
+    // Xeon the IOL fold's factorizations took 23.6 s instead of 1.9 s,
+    // even with the dynamic adjustment that caps a region at the idle
+    // cores. The parallel work of a factorization is in the BLAS, so no
+    // OpenMP region may be active (max-active-levels 0), whatever the
+    // thread count (a 480 000-DoF plate solves as fast, doc/performance.md
+    // "OpenMP regions off"). It is a setting of the calling thread (GCC 12),
+    // the one the solvers run on.
+    void limit_openmp_regions()
     {
-      static const auto get_levels =
-          find_function<int()>("omp_get_max_active_levels");
-      static const int initial_levels = get_levels ? get_levels() : 1;
       if (const auto set_levels =
               find_function<void(int)>("omp_set_max_active_levels"))
-        set_levels(threads == 1 ? 0 : initial_levels);
-      if (const auto set_dynamic = find_function<void(int)>("omp_set_dynamic"))
-        set_dynamic(threads > 1 && threads < 4);
+        set_levels(0);
     }
 
     void limit_library_threads(unsigned int threads)
@@ -204,7 +203,7 @@ namespace coshell::solvers
            {"openblas_set_num_threads", "omp_set_num_threads"})
         if (const auto set = find_function<void(int)>(name))
           set(static_cast<int>(threads));
-      limit_openmp_regions(threads);
+      limit_openmp_regions();
     }
   } // namespace
 
@@ -213,9 +212,10 @@ namespace coshell::solvers
     prm.enter_subsection("Parallel");
     prm.declare_entry("Threads", "0", Patterns::Integer(0),
                       "Number of threads for assembly, and for the BLAS "
-                      "(OpenBLAS) and OpenMP runtimes the linear solvers "
-                      "use (dimensionless); 0 = all cores (capped by the "
-                      "environment variable DEAL_II_NUM_THREADS if set).");
+                      "(OpenBLAS) the linear solvers use (dimensionless); "
+                      "0 = all cores (capped by the environment variable "
+                      "DEAL_II_NUM_THREADS if set). OpenMP regions (CHOLMOD "
+                      "opens some) run on one thread at any setting.");
     prm.leave_subsection();
   }
 
