@@ -9,6 +9,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <exception>
 #include <tuple>
 #include <type_traits>
 
@@ -376,6 +377,42 @@ namespace coshell::model
     };
   } // namespace
 
+  Threads::Task<std::exception_ptr>
+  ShellProblem::prepare_contributions(const EvaluationPoint &at)
+  {
+    for (const auto &contribution : contributions_)
+      if (contribution->has_cell_terms())
+        contribution->prepare(at);
+    // The task hands back what it threw: deal.II 9.4's Task<void> drops it
+    // (a friction coefficient gone negative passed unreported).
+    return Threads::new_task(
+        [this, &at]() -> std::exception_ptr
+        {
+          try
+          {
+            for (const auto &contribution : contributions_)
+              if (!contribution->has_cell_terms())
+                contribution->prepare(at);
+          }
+          catch (...)
+          {
+            return std::current_exception();
+          }
+          return nullptr;
+        });
+  }
+
+  void ShellProblem::finish_preparation(
+      Threads::Task<std::exception_ptr> &preparation)
+  {
+    if (const std::exception_ptr failure = preparation.return_value())
+      std::rethrow_exception(failure);
+    blocked_ = false;
+    for (const auto &contribution : contributions_)
+      blocked_ = blocked_ || contribution->pending();
+    pending_ = pending_ || blocked_;
+  }
+
   void ShellProblem::evaluate(Vector<double>         &residual,
                               solvers::TangentMatrix *tangent)
   {
@@ -386,19 +423,14 @@ namespace coshell::model
       tangent->zero();
     for (auto &force : forces_)
       force = 0;
-    const EvaluationPoint at = point();
-    blocked_                 = false;
-    for (const auto &contribution : contributions_)
-    {
-      contribution->prepare(at);
-      blocked_ = blocked_ || contribution->pending();
-    }
-    pending_         = pending_ || blocked_;
-    const auto every = [](const Contribution &) { return true; };
+    const EvaluationPoint at          = point();
+    auto                  preparation = prepare_contributions(at);
+    const auto            every = [](const Contribution &) { return true; };
     if (tangent && tangent->distributed())
     {
       auto &matrix = tangent->trilinos();
       assemble(every, at, &residual, &matrix);
+      finish_preparation(preparation);
       solvers::RowsOf owned_rows(matrix, model_.locally_owned_dofs());
       assemble_blocks(at, residual, &owned_rows);
       matrix.compress(VectorOperation::add);
@@ -408,6 +440,7 @@ namespace coshell::model
       SparseMatrix<double> *matrix = tangent ? &tangent->serial() : nullptr;
       const LowerOnly lower(lower_only_, tangent && tangent->lower_only());
       assemble(every, at, &residual, matrix);
+      finish_preparation(preparation);
       assemble_blocks(at, residual, matrix);
     }
     // Each contribution's global terms, kept by kind for the force scale.

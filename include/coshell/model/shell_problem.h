@@ -7,12 +7,14 @@
 #include <coshell/solvers/nonlinear_problem.h>
 
 #include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/thread_management.h>
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/sparsity_pattern.h>
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
 
 #include <array>
 #include <cstdint>
+#include <exception>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -215,6 +217,16 @@ namespace coshell::model
     rotation_limit_fraction(const dealii::Vector<double> &correction) const;
     double current_force_scale() const;
     void   update_inhomogeneities();
+    /// Calls every contribution's prepare(). Those with cell terms do so
+    /// now; the others (contact's pair search) on the returned task, which
+    /// with several threads runs beside the cells' assembly (it reads the
+    /// state alone). Join it before their blocks are added.
+    dealii::Threads::Task<std::exception_ptr>
+    prepare_contributions(const EvaluationPoint &at);
+    /// Joins 'preparation' (rethrowing what it threw) and notes whether a
+    /// contribution holds a prescribed move back.
+    void
+    finish_preparation(dealii::Threads::Task<std::exception_ptr> &preparation);
     /// Adds the blocks of the contributions (contact pairs). Every rank
     /// finds the same blocks; a distributed tangent takes each row from the
     /// rank that owns it (solvers::RowsOf).
