@@ -184,12 +184,23 @@ namespace coshell::contact
     start.assign(1, 0);
     other.clear();
     distance.clear();
+    nearest.clear();
+    thickest.clear();
   }
 
-  void Contact::CandidateRows::add(unsigned int primitive, double listed)
+  void Contact::CandidateRows::add(unsigned int primitive,
+                                   double       listed,
+                                   double       kept)
   {
+    if (nearest.size() < start.size())
+    {
+      nearest.push_back(std::numeric_limits<double>::infinity());
+      thickest.push_back(0);
+    }
     other.push_back(primitive);
     distance.push_back(listed);
+    nearest.back()  = std::min(nearest.back(), listed);
+    thickest.back() = std::max(thickest.back(), kept);
   }
 
   void Contact::CandidateRows::end_row()
@@ -208,6 +219,11 @@ namespace coshell::contact
     {
       other[first + k]    = row_other[order[k]];
       distance[first + k] = row_distance[order[k]];
+    }
+    if (nearest.size() < start.size()) // an empty row
+    {
+      nearest.push_back(std::numeric_limits<double>::infinity());
+      thickest.push_back(0);
     }
     start.push_back(other.size());
   }
@@ -326,7 +342,8 @@ namespace coshell::contact
         const auto &t = triangles[hit.second];
         vertex_triangle.add(hit.second,
                             listed(measure, PrimitivePair::point_triangle,
-                                   {{x[v], X[t[0]], X[t[1]], X[t[2]]}}));
+                                   {{x[v], X[t[0]], X[t[1]], X[t[2]]}}),
+                            offset(o, true, v));
       }
       vertex_triangle.end_row();
     }
@@ -347,7 +364,8 @@ namespace coshell::contact
         const auto &t = shell_triangles_[hit.second];
         triangle_vertex.add(hit.second,
                             listed(measure, PrimitivePair::point_triangle,
-                                   {{X[j], x[t[0]], x[t[1]], x[t[2]]}}));
+                                   {{X[j], x[t[0]], x[t[1]], x[t[2]]}}),
+                            offset(o, false, hit.second));
       }
       triangle_vertex.end_row();
     }
@@ -378,8 +396,10 @@ namespace coshell::contact
       for (const unsigned f : edges)
       {
         const auto [p, q] = obstacle_edges_[o][f];
-        rows.add(f, listed(measure, PrimitivePair::segment_segment,
-                           {{x[a], x[b], X[p], X[q]}}));
+        rows.add(f,
+                 listed(measure, PrimitivePair::segment_segment,
+                        {{x[a], x[b], X[p], X[q]}}),
+                 edge_offset(o, e));
       }
       rows.end_row();
     }
@@ -416,7 +436,8 @@ namespace coshell::contact
         const auto &t = shell_triangles_[hit.second];
         vertex_triangle.add(hit.second,
                             listed(measure, PrimitivePair::point_triangle,
-                                   {{x[v], x[t[0]], x[t[1]], x[t[2]]}}));
+                                   {{x[v], x[t[0]], x[t[1]], x[t[2]]}}),
+                            self_offset(v, hit.second));
       }
       vertex_triangle.end_row();
     }
@@ -438,8 +459,10 @@ namespace coshell::contact
         if (f <= e || excluded_edges.excludes(e, f))
           continue;
         const auto [p, q] = shell_edges_[f];
-        c.self_edge_edge.add(f, listed(measure, PrimitivePair::segment_segment,
-                                       {{x[a], x[b], x[p], x[q]}}));
+        c.self_edge_edge.add(f,
+                             listed(measure, PrimitivePair::segment_segment,
+                                    {{x[a], x[b], x[p], x[q]}}),
+                             self_edge_offset(e, f));
       }
       c.self_edge_edge.end_row();
     }
@@ -517,6 +540,21 @@ namespace coshell::contact
                : kept;
   }
 
+  bool Contact::out_of_reach(const Screen        &screen,
+                             const CandidateRows &rows,
+                             unsigned int         row) const
+  {
+    return screen.skips_search(rows.nearest[row],
+                               pair_reach(rows.thickest[row]));
+  }
+
+  bool Contact::clears_row(const Screen        &screen,
+                           const CandidateRows &rows,
+                           unsigned int         row) const
+  {
+    return screen.clears(rows.nearest[row], filter_offset(rows.thickest[row]));
+  }
+
   /// The fraction one listed pair allows. Only pairs whose swept boxes
   /// come within their offset reach additive_ccd(), which also stops a
   /// pair closing 90 % of a larger gap: the set it sees is then the same
@@ -550,6 +588,8 @@ namespace coshell::contact
     double      fraction        = 1;
     for (unsigned int k = 0; k < shell_vertices_.size(); ++k)
     {
+      if (clears_row(screen, vertex_triangle, k))
+        continue;
       const unsigned v = shell_vertices_[k];
       for (unsigned i = vertex_triangle.start[k];
            i < vertex_triangle.start[k + 1]; ++i)
@@ -569,6 +609,9 @@ namespace coshell::contact
     }
     const auto &triangle_vertex = c.triangle_vertex[o];
     for (unsigned int j = 0; j < X.size(); ++j)
+    {
+      if (clears_row(screen, triangle_vertex, j))
+        continue;
       for (unsigned i = triangle_vertex.start[j];
            i < triangle_vertex.start[j + 1]; ++i)
       {
@@ -585,6 +628,7 @@ namespace coshell::contact
                                                   along(dx, t[1]), along(dx, t[2])}},
                                                 kept));
       }
+    }
     if (parameters_.edge_edge_pairs)
       fraction = std::min(fraction, edge_filter_fraction(motion, o, c, screen));
     return fraction;
@@ -603,6 +647,8 @@ namespace coshell::contact
     double      fraction = 1;
     for (unsigned int e = 0; e < shell_edges_.size(); ++e)
     {
+      if (clears_row(screen, rows, e))
+        continue;
       const auto [a, b]    = shell_edges_[e];
       const double kept    = edge_offset(o, e);
       const double cleared = filter_offset(kept);
@@ -646,6 +692,8 @@ namespace coshell::contact
     const auto &vertex_triangle = c.self_vertex_triangle;
     for (unsigned int k = 0; k < shell_vertices_.size(); ++k)
     {
+      if (clears_row(screen, vertex_triangle, k))
+        continue;
       const unsigned v = shell_vertices_[k];
       for (unsigned i = vertex_triangle.start[k];
            i < vertex_triangle.start[k + 1]; ++i)
@@ -658,6 +706,9 @@ namespace coshell::contact
     }
     const auto &edge_edge = c.self_edge_edge;
     for (unsigned int e = 0; e + 1 < edge_edge.start.size(); ++e)
+    {
+      if (clears_row(screen, edge_edge, e))
+        continue;
       for (unsigned i = edge_edge.start[e]; i < edge_edge.start[e + 1]; ++i)
       {
         const unsigned f = edge_edge.other[i];
@@ -666,6 +717,7 @@ namespace coshell::contact
                 shell_edges_[f][1]},
                self_edge_offset(e, f));
       }
+    }
     return fraction;
   }
 

@@ -207,6 +207,8 @@ namespace coshell::contact
     const auto &rows      = candidates_.vertex_triangle[o];
     for (unsigned int k = 0; k < shell_vertices_.size(); ++k)
     {
+      if (out_of_reach(screen, rows, k))
+        continue;
       const unsigned v            = shell_vertices_[k];
       const double   vertex_reach = pair_reach(offset(o, true, v));
       for (unsigned i = rows.start[k]; i < rows.start[k + 1]; ++i)
@@ -236,6 +238,8 @@ namespace coshell::contact
     const auto &rows = candidates_.self_vertex_triangle;
     for (unsigned int k = 0; k < shell_vertices_.size(); ++k)
     {
+      if (out_of_reach(screen, rows, k))
+        continue;
       const unsigned v = shell_vertices_[k];
       for (unsigned i = rows.start[k]; i < rows.start[k + 1]; ++i)
       {
@@ -266,7 +270,9 @@ namespace coshell::contact
     const auto &rows = candidates_.triangle_vertex[o];
     for (unsigned int j = 0; j < X.size(); ++j)
     {
-      if (rows.start[j] == rows.start[j + 1])
+      // Each pair's reach is the obstacle's, not its own offset's.
+      if (rows.start[j] == rows.start[j + 1] ||
+          screen.skips_search(rows.nearest[j], reach(o)))
         continue;
       for (unsigned i = rows.start[j]; i < rows.start[j + 1]; ++i)
       {
@@ -592,6 +598,8 @@ namespace coshell::contact
     const auto &rows = candidates_.edge_edge[o];
     for (unsigned int e = 0; e < shell_edges_.size(); ++e)
     {
+      if (out_of_reach(screen, rows, e))
+        continue;
       const auto [a, b]       = shell_edges_[e];
       const double edge_reach = pair_reach(edge_offset(o, e));
       for (unsigned i = rows.start[e]; i < rows.start[e + 1]; ++i)
@@ -640,6 +648,8 @@ namespace coshell::contact
     const auto &rows = candidates_.self_edge_edge;
     for (unsigned int e = 0; e < shell_edges_.size(); ++e)
     {
+      if (out_of_reach(screen, rows, e))
+        continue;
       const auto [a, b] = shell_edges_[e];
       for (unsigned i = rows.start[e]; i < rows.start[e + 1]; ++i)
       {

@@ -460,8 +460,16 @@ namespace coshell::contact
     {
       std::vector<unsigned int> start{0}, other;
       std::vector<double>       distance;
-      void                      clear();
-      void                      add(unsigned int primitive, double listed);
+      /// Per row: the smallest listed distance (infinite for an empty row)
+      /// and the largest offset a pair of the row keeps (length). A row
+      /// the screen clears with both clears each of its pairs, to the bit
+      /// (the screen's test is monotone in each), so the step filter skips
+      /// it without reading its pairs.
+      std::vector<double> nearest, thickest;
+      void                clear();
+      /// Appends a pair with the primitive on the row's other side, its
+      /// listed distance and the offset it keeps (kept, length).
+      void add(unsigned int primitive, double listed, double kept);
       /// Closes the current row, sorted by primitive: the order of the
       /// pairs, hence the round-off of every sum over them, then depends
       /// on nothing but the pairs (not on the R-tree, not on when the
@@ -543,6 +551,16 @@ namespace coshell::contact
     double filter_fraction(const Motion &motion, unsigned int only) const;
     /// The part of a pair's offset 'kept' that the step filter keeps.
     double filter_offset(double kept) const;
+    /// Whether every pair of the row is out of the pair search's reach
+    /// (pair_reach of the pair's offset; the reach is monotone in it).
+    bool out_of_reach(const Screen        &screen,
+                      const CandidateRows &rows,
+                      unsigned int         row) const;
+    /// Whether the screen clears every pair of the row (CandidateRows::
+    /// nearest and thickest) at the filter's offsets.
+    bool   clears_row(const Screen        &screen,
+                      const CandidateRows &rows,
+                      unsigned int         row) const;
     double pair_filter_fraction(const Screen        &screen,
                                 double               listed,
                                 PrimitivePair        type,
