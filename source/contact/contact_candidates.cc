@@ -186,21 +186,16 @@ namespace coshell::contact
     distance.clear();
     nearest.clear();
     thickest.clear();
+    thickest_of_open_row = 0;
   }
 
   void Contact::CandidateRows::add(unsigned int primitive,
                                    double       listed,
                                    double       kept)
   {
-    if (nearest.size() < start.size())
-    {
-      nearest.push_back(std::numeric_limits<double>::infinity());
-      thickest.push_back(0);
-    }
     other.push_back(primitive);
     distance.push_back(listed);
-    nearest.back()  = std::min(nearest.back(), listed);
-    thickest.back() = std::max(thickest.back(), kept);
+    thickest_of_open_row = std::max(thickest_of_open_row, kept);
   }
 
   void Contact::CandidateRows::end_row()
@@ -220,11 +215,12 @@ namespace coshell::contact
       other[first + k]    = row_other[order[k]];
       distance[first + k] = row_distance[order[k]];
     }
-    if (nearest.size() < start.size()) // an empty row
-    {
-      nearest.push_back(std::numeric_limits<double>::infinity());
-      thickest.push_back(0);
-    }
+    nearest.push_back(std::accumulate(row_distance.begin(), row_distance.end(),
+                                      std::numeric_limits<double>::infinity(),
+                                      [](double a, double b)
+                                      { return std::min(a, b); }));
+    thickest.push_back(thickest_of_open_row);
+    thickest_of_open_row = 0;
     start.push_back(other.size());
   }
 

@@ -270,9 +270,9 @@ namespace coshell::contact
     const auto &rows = candidates_.triangle_vertex[o];
     for (unsigned int j = 0; j < X.size(); ++j)
     {
-      // Each pair's reach is the obstacle's, not its own offset's.
-      if (rows.start[j] == rows.start[j + 1] ||
-          screen.skips_search(rows.nearest[j], reach(o)))
+      // Each pair's reach is the obstacle's, not its own offset's; an
+      // empty row's nearest is infinite.
+      if (screen.skips_search(rows.nearest[j], reach(o)))
         continue;
       for (unsigned i = rows.start[j]; i < rows.start[j + 1]; ++i)
       {

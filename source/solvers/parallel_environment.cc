@@ -187,9 +187,9 @@ namespace coshell::solvers
     // even with the dynamic adjustment that caps a region at the idle
     // cores. The parallel work of a factorization is in the BLAS, so no
     // OpenMP region may be active (max-active-levels 0), whatever the
-    // thread count (a 480 000-DoF plate solves as fast, doc/performance.md
-    // "OpenMP regions off"). It is a setting of the calling thread (GCC 12),
-    // the one the solvers run on.
+    // thread count (a 480 000-DoF plate solves as fast: doc/performance.md,
+    // "OpenMP regions off at every thread count"). It is a setting of the
+    // calling thread (GCC 12), the one the solvers run on.
     void limit_openmp_regions()
     {
       if (const auto set_levels =

@@ -6,7 +6,6 @@
 #include <omp.h>
 
 #include <string>
-#include <thread>
 
 namespace
 {

@@ -462,11 +462,13 @@ namespace coshell::contact
       std::vector<double>       distance;
       /// Per row: the smallest listed distance (infinite for an empty row)
       /// and the largest offset a pair of the row keeps (length). A row
-      /// the screen clears with both clears each of its pairs, to the bit
-      /// (the screen's test is monotone in each), so the step filter skips
-      /// it without reading its pairs.
+      /// a screen clears with both has each of its pairs cleared, to the
+      /// bit (the screens' tests are monotone in each), so the step filter
+      /// and the pair search skip it without reading its pairs.
       std::vector<double> nearest, thickest;
-      void                clear();
+      /// The largest offset kept so far in the row end_row() closes next.
+      double thickest_of_open_row = 0;
+      void   clear();
       /// Appends a pair with the primitive on the row's other side, its
       /// listed distance and the offset it keeps (kept, length).
       void add(unsigned int primitive, double listed, double kept);
