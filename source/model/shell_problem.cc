@@ -2,6 +2,7 @@
 
 #include <coshell/solvers/parallel_environment.h>
 
+#include <deal.II/base/multithread_info.h>
 #include <deal.II/lac/affine_constraints.templates.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 
@@ -290,28 +291,31 @@ namespace coshell::model
                                      Vector<double>        &residual,
                                      Matrix                *tangent)
   {
-    for (const auto &contribution : contributions_)
+    for (unsigned int k = 0; k < contributions_.size(); ++k)
     {
-      Vector<double> &force =
-          forces_[static_cast<unsigned int>(contribution->kind())];
-      contribution->add_blocks(
-          at,
-          [&](const DofBlock &block)
-          {
-            for (unsigned int i = 0; i < block.dofs.size(); ++i)
-              force[block.dofs[i]] += block.vector[i];
-            if (scatter_directly(block.matrix, block.vector, block.dofs,
-                                 tangent, &residual))
-              return;
-            if (tangent)
-              constraints_.distribute_local_to_global(within_pattern(block),
-                                                      block.vector, block.dofs,
-                                                      *tangent, residual);
-            else
-              constraints_.distribute_local_to_global(block.vector, block.dofs,
-                                                      residual);
-          },
-          tangent != nullptr);
+      const Contribution &contribution = *contributions_[k];
+      Vector<double>     &force =
+          forces_[static_cast<unsigned int>(contribution.kind())];
+      const auto add = [&](const DofBlock &block)
+      {
+        for (unsigned int i = 0; i < block.dofs.size(); ++i)
+          force[block.dofs[i]] += block.vector[i];
+        if (scatter_directly(block.matrix, block.vector, block.dofs, tangent,
+                             &residual))
+          return;
+        if (tangent)
+          constraints_.distribute_local_to_global(within_pattern(block),
+                                                  block.vector, block.dofs,
+                                                  *tangent, residual);
+        else
+          constraints_.distribute_local_to_global(block.vector, block.dofs,
+                                                  residual);
+      };
+      if (blocks_made_on_task_ && !contribution.has_cell_terms())
+        for (unsigned int b = 0; b < made_blocks_[k].count; ++b)
+          add(made_blocks_[k].blocks[b]);
+      else
+        contributions_[k]->add_blocks(at, add, tangent != nullptr);
     }
   }
 
@@ -377,22 +381,48 @@ namespace coshell::model
     };
   } // namespace
 
+  void ShellProblem::MadeBlocks::keep(const DofBlock &block)
+  {
+    if (count == blocks.size())
+      blocks.emplace_back();
+    DofBlock &kept = blocks[count++];
+    kept.dofs      = block.dofs;
+    kept.vector    = block.vector;
+    kept.matrix    = block.matrix;
+  }
+
   Threads::Task<std::exception_ptr>
-  ShellProblem::prepare_contributions(const EvaluationPoint &at)
+  ShellProblem::prepare_contributions(const EvaluationPoint &at,
+                                      const bool             with_tangent)
   {
     for (const auto &contribution : contributions_)
       if (contribution->has_cell_terms())
         contribution->prepare(at);
+    // The blocks are made on the task as well when it runs beside the
+    // cells (contact's pair terms, a tenth of a haptic step), and kept
+    // for assemble_blocks: the matrix takes them after the cells, in the
+    // same order as before.
+    blocks_made_on_task_ = MultithreadInfo::n_threads() > 1;
+    made_blocks_.resize(contributions_.size());
     // The task hands back what it threw: deal.II 9.4's Task<void> drops it
     // (a friction coefficient gone negative passed unreported).
     return Threads::new_task(
-        [this, &at]() -> std::exception_ptr
+        [this, &at, with_tangent]() -> std::exception_ptr
         {
           try
           {
             for (const auto &contribution : contributions_)
               if (!contribution->has_cell_terms())
                 contribution->prepare(at);
+            for (unsigned int k = 0; k < contributions_.size(); ++k)
+              if (blocks_made_on_task_ && !contributions_[k]->has_cell_terms())
+              {
+                MadeBlocks &made = made_blocks_[k];
+                made.count       = 0;
+                contributions_[k]->add_blocks(
+                    at, [&made](const DofBlock &block) { made.keep(block); },
+                    with_tangent);
+              }
           }
           catch (...)
           {
@@ -423,9 +453,9 @@ namespace coshell::model
       tangent->zero();
     for (auto &force : forces_)
       force = 0;
-    const EvaluationPoint at          = point();
-    auto                  preparation = prepare_contributions(at);
-    const auto            every = [](const Contribution &) { return true; };
+    const EvaluationPoint at = point();
+    auto       preparation   = prepare_contributions(at, tangent != nullptr);
+    const auto every         = [](const Contribution &) { return true; };
     if (tangent && tangent->distributed())
     {
       auto &matrix = tangent->trilinos();

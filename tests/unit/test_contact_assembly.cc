@@ -8,15 +8,21 @@
 #include <coshell/contact/contact.h>
 #include <coshell/io/expressions.h>
 #include <coshell/mesh/mesh.h>
+#include <coshell/model/shell_problem.h>
+#include <coshell/solvers/tangent_matrix.h>
 
+#include <deal.II/base/multithread_info.h>
 #include <deal.II/grid/tria_description.h>
+#include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/full_matrix.h>
 
 #include <gtest/gtest.h>
 
 #include <array>
 #include <cmath>
+#include <memory>
 #include <utility>
+#include <vector>
 
 namespace
 {
@@ -543,4 +549,54 @@ TEST(ContactAssembly, InputPathRampsFromThePresentAndKeepsThePast)
   const auto moved           = obstacle.positions(2.5);
   EXPECT_DOUBLE_EQ(moved[4][2], 0.1 - 0.5 * 3.0);
   EXPECT_DOUBLE_EQ(moved[4][0], 1.1);
+}
+
+// With several threads ShellProblem makes the contact blocks on the task
+// that searches the pairs, beside the cells' assembly, keeps them and
+// adds them after the cells; with one it adds them as they are made.
+// Contact alone (the cells add nothing), with friction: the residual and
+// the tangent of both ways are the same to the bit.
+TEST(ContactAssembly, BlocksMadeBesideTheCellsAreThoseMadeInlineToTheBit)
+{
+  UnitPlate                  plate;
+  contact::ContactParameters parameters = barrier_parameters();
+  parameters.stiction_velocity          = 0.01;
+  parameters.obstacles                  = {plane(-0.55, 0.5)};
+  contact::Contact contact(plate.model, parameters);
+  contact.check_initial_configuration(plate.state, 0);
+  std::vector<std::unique_ptr<model::Contribution>> contributions;
+  contributions.push_back(
+      std::make_unique<contact::ContactContribution>(contact));
+  dealii::AffineConstraints<double> constraints;
+  constraints.close();
+  model::ShellProblem problem(plate.model, plate.state, constraints,
+                              std::move(contributions));
+  const unsigned int  n = plate.model.n_dofs();
+  Vector<double>      sink(n);
+  for (unsigned int v = 0; v < plate.surface.n_vertices(); ++v)
+    sink[plate.model.vertex_dofs(v)[2]] = -0.01 - 0.002 * (v % 2);
+  problem.apply_increment(sink);
+
+  const unsigned int threads  = dealii::MultithreadInfo::n_threads();
+  const auto         evaluate = [&](unsigned int limit)
+  {
+    dealii::MultithreadInfo::set_thread_limit(limit);
+    EXPECT_EQ(dealii::MultithreadInfo::n_threads(), limit);
+    std::pair<Vector<double>, solvers::TangentMatrix> result;
+    result.first.reinit(n);
+    problem.reinit_tangent(result.second);
+    problem.evaluate(result.first, &result.second);
+    return result;
+  };
+  auto inline_made = evaluate(1);
+  auto beside      = evaluate(2);
+  dealii::MultithreadInfo::set_thread_limit(threads);
+  ASSERT_GT(inline_made.first.l2_norm(), 0);
+  for (unsigned int k = 0; k < n; ++k)
+    ASSERT_EQ(beside.first[k], inline_made.first[k]) << "residual " << k;
+  const auto &matrix = inline_made.second.serial();
+  for (unsigned int i = 0; i < n; ++i)
+    for (auto e = matrix.begin(i); e != matrix.end(i); ++e)
+      ASSERT_EQ(beside.second.serial().el(i, e->column()), e->value())
+          << "entry (" << i << ", " << e->column() << ")";
 }

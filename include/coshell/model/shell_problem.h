@@ -220,9 +220,22 @@ namespace coshell::model
     /// Calls every contribution's prepare(). Those with cell terms do so
     /// now; the others (contact's pair search) on the returned task, which
     /// with several threads runs beside the cells' assembly (it reads the
-    /// state alone). Join it before their blocks are added.
+    /// state alone) and then makes their blocks too, into made_blocks_.
+    /// Join it before their blocks are added.
     dealii::Threads::Task<std::exception_ptr>
-    prepare_contributions(const EvaluationPoint &at);
+    prepare_contributions(const EvaluationPoint &at, bool with_tangent);
+    /// The blocks one contribution made on the preparation task, in the
+    /// order it made them; the storage is kept between evaluations.
+    struct MadeBlocks
+    {
+      std::vector<DofBlock> blocks;
+      unsigned int          count = 0;
+      void                  keep(const DofBlock &block);
+    };
+    /// Per contribution. Used with several threads only: on one, the task
+    /// runs at once and the blocks go straight into the matrix.
+    std::vector<MadeBlocks> made_blocks_;
+    bool                    blocks_made_on_task_ = false;
     /// Joins 'preparation' (rethrowing what it threw) and notes whether a
     /// contribution holds a prescribed move back.
     void
