@@ -48,14 +48,14 @@ namespace coshell::solvers
       // level 2 CHOLMOD prints that warning as "CHOLMOD error", 488 lines
       // in the IOL scene. Real failures reach the caller as its status.
       common.print = 0;
-      // Relaxed amalgamation: supernodes of up to 24 columns (four shell
-      // vertices) merge when under 80 % of the merged block is zero, up
-      // to 72 when under 10 %, and one vertex's six columns always do
-      // (CHOLMOD's defaults are 4, 16 and 48). Fewer, larger supernodes
-      // cost a few more flops and far fewer small BLAS calls: the folded
-      // lens's factorization (1 890 DoFs) 1.2x to 1.3x faster, its
-      // 7 600-triangle refinement 1.05x to 1.1x (doc/performance.md,
-      // "CHOLMOD's supernodes and its input").
+      // Relaxed amalgamation: supernodes of fewer than six columns (one
+      // shell vertex's) always merge, of up to 24 (four vertices') when
+      // under 80 % of the merged block is zero, of up to 72 when under
+      // 10 % (CHOLMOD's defaults are 4, 16 and 48). Fewer, larger
+      // supernodes cost a few more flops and far fewer small BLAS calls:
+      // the folded lens's factorization (1 890 DoFs) 1.15x to 1.2x
+      // faster, its 1 692- and 6 400-triangle refinements 1.05x and 1.1x
+      // (doc/performance.md, "CHOLMOD's supernodes and its input").
       common.nrelax[0] = 6;
       common.nrelax[1] = 24;
       common.nrelax[2] = 72;
