@@ -317,6 +317,8 @@ namespace coshell::model
       else
         contributions_[k]->add_blocks(at, add, tangent != nullptr);
     }
+    // Kept blocks are this evaluation's only.
+    blocks_made_on_task_ = false;
   }
 
   template<typename Matrix>

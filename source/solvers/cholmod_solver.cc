@@ -4,6 +4,7 @@
 
 #include <suitesparse/cholmod.h>
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -48,14 +49,17 @@ namespace coshell::solvers
       // level 2 CHOLMOD prints that warning as "CHOLMOD error", 488 lines
       // in the IOL scene. Real failures reach the caller as its status.
       common.print = 0;
-      // Relaxed amalgamation: supernodes of fewer than six columns (one
-      // shell vertex's) always merge, of up to 24 (four vertices') when
-      // under 80 % of the merged block is zero, of up to 72 when under
-      // 10 % (CHOLMOD's defaults are 4, 16 and 48). Fewer, larger
-      // supernodes cost a few more flops and far fewer small BLAS calls:
-      // the folded lens's factorization (1 890 DoFs) 1.15x to 1.2x
-      // faster, its 1 692- and 6 400-triangle refinements 1.05x and 1.1x
-      // (doc/performance.md, "CHOLMOD's supernodes and its input").
+      // Relaxed amalgamation: CHOLMOD merges two adjacent supernodes when
+      // that adds no zero, or the merged one has at most nrelax[0]
+      // columns, or at most nrelax[1] and under zrelax[0] = 80 % zeros,
+      // or at most nrelax[2] and under 10 %, or under 5 % at any size.
+      // A shell vertex has six DoFs: CHOLMOD's defaults 4, 16 and 48
+      // leave vertices apart that 6, 24 (four vertices) and 72 merge.
+      // Fewer, larger supernodes cost a few more flops and far fewer
+      // small BLAS calls: the folded lens's factorization (1 890 DoFs)
+      // 1.15x to 1.2x faster, its 1 692- and 6 400-triangle refinements
+      // 1.05x and 1.1x (doc/performance.md, "CHOLMOD's supernodes and
+      // its input").
       common.nrelax[0] = 6;
       common.nrelax[1] = 24;
       common.nrelax[2] = 72;
@@ -95,18 +99,26 @@ namespace coshell::solvers
     void permute_values();
   };
 
-  /// Orders the matrix (AMD, postordered), then analyses P A P' again in
-  /// that order, given explicitly as its lower triangle. CHOLMOD factorizes
-  /// a permuted matrix from its lower triangle without a copy: given A and
-  /// P it builds tril(P A P') itself at every factorization, which took
-  /// 0.2 ms of the haptic step's 1.4 ms. Here the map from A's entries to
+  /// Orders the matrix (CHOLMOD's default choice, AMD or METIS,
+  /// postordered), then analyses P A P' again in the natural order, given
+  /// explicitly as its lower triangle: a supernodal factorization reads
+  /// that as it is. Given A's upper triangle and P, CHOLMOD built
+  /// tril(P A P') itself at every factorization, 0.2 ms of the haptic
+  /// step's 1.4 ms of factorization. Here the map from A's entries to
   /// those of P A P' is made once per pattern: a transposition of the
-  /// entries' own positions.
+  /// entries' own positions. (A matrix small enough for a simplicial
+  /// factor is still transposed once per factorization, by CHOLMOD.)
   void CholmodSolver::Data::analyse()
   {
     if (factor)
       cholmod_free_factor(&factor, &common);
     cholmod_free_sparse(&permuted, &common);
+    // Made before CHOLMOD allocates: nothing below throws while it holds
+    // memory of its own.
+    std::vector<double> positions(rows.values.size());
+    for (std::size_t k = 0; k < positions.size(); ++k)
+      positions[k] = static_cast<double>(k);
+    order.resize(rows.n_rows());
     // The order only: the simplicial analysis stops before the supernodes,
     // which the second analysis finds (a quarter less time in all).
     const int kind           = common.supernodal;
@@ -116,10 +128,7 @@ namespace coshell::solvers
     if (!ordering)
       return;
     const int *perm = static_cast<const int *>(ordering->Perm);
-    order.assign(perm, perm + ordering->n);
-    std::vector<double> positions(rows.values.size());
-    for (std::size_t k = 0; k < positions.size(); ++k)
-      positions[k] = static_cast<double>(k);
+    std::copy(perm, perm + order.size(), order.begin());
     cholmod_sparse entries = matrix;
     entries.x              = positions.data();
     permuted               = cholmod_ptranspose(
@@ -186,10 +195,16 @@ namespace coshell::solvers
   {
     Data              &d = *data_;
     const unsigned int n = b.size();
+    if (!d.factor || d.factor->n != n)
+      throw std::logic_error("CHOLMOD solve without the factors of a " +
+                             std::to_string(n) + " x " + std::to_string(n) +
+                             " matrix");
     if (!d.rhs || d.rhs->nrow != n)
     {
       cholmod_free_dense(&d.rhs, &d.common);
       d.rhs = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &d.common);
+      if (!d.rhs)
+        throw std::runtime_error("CHOLMOD solve: out of memory");
     }
     double *permuted_b = static_cast<double *>(d.rhs->x);
     for (unsigned int k = 0; k < n; ++k)

@@ -219,9 +219,10 @@ namespace coshell::model
     void   update_inhomogeneities();
     /// Calls every contribution's prepare(). Those with cell terms do so
     /// now; the others (contact's pair search) on the returned task, which
-    /// with several threads runs beside the cells' assembly (it reads the
-    /// state alone) and then makes their blocks too, into made_blocks_.
-    /// Join it before their blocks are added.
+    /// with several threads runs beside the cells' assembly and then
+    /// makes their blocks too, into made_blocks_. It reads the state and
+    /// writes only those contributions' own records, which the cells do
+    /// not touch. Join it before their blocks are added.
     dealii::Threads::Task<std::exception_ptr>
     prepare_contributions(const EvaluationPoint &at, bool with_tangent);
     /// The blocks one contribution made on the preparation task, in the
@@ -240,7 +241,8 @@ namespace coshell::model
     /// contribution holds a prescribed move back.
     void
     finish_preparation(dealii::Threads::Task<std::exception_ptr> &preparation);
-    /// Adds the blocks of the contributions (contact pairs). Every rank
+    /// Adds the blocks of the contributions (contact pairs): those the
+    /// preparation task of this evaluation made, else made now. Every rank
     /// finds the same blocks; a distributed tangent takes each row from the
     /// rank that owns it (solvers::RowsOf).
     template<typename Matrix>
