@@ -300,6 +300,11 @@ namespace coshell::contact
       double       area      = 0; ///< the pair's share of the shell, length^2
       bool         self      = false;
       bool         edge_edge = false;
+      /// The distance the pair search found (length), at the positions
+      /// add_pair_terms() evaluates the pair at: there it tells the pairs
+      /// that carry no force from the rest before their points and
+      /// distance derivatives are made again. Not kept in checkpoints.
+      double searched_distance = 0;
     };
     /// Which of a pair's 12 coordinates are the shell's: [first, last).
     struct ShellCoordinates
@@ -432,6 +437,9 @@ namespace coshell::contact
     double automatic_barrier_stiffness(double stiffness_per_area,
                                        double load_pressure) const;
     double offset(const Pair &pair) const;
+    /// Whether the pair's searched distance puts it beyond the reach of
+    /// its own offset, where its energy is zero.
+    bool beyond_reach(const Pair &pair) const;
     /// The same for shell edge e (the mean of its vertices' offsets).
     double edge_offset(unsigned int obstacle, unsigned int e) const;
     /// Obstacle o's work since the last save().
