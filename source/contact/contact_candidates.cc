@@ -186,6 +186,7 @@ namespace coshell::contact
     distance.clear();
     nearest.clear();
     thickest.clear();
+    anchored.clear();
     thickest_of_open_row = 0;
   }
 
@@ -222,11 +223,21 @@ namespace coshell::contact
     thickest.push_back(thickest_of_open_row);
     thickest_of_open_row = 0;
     start.push_back(other.size());
+    anchored.resize(other.size(), -std::numeric_limits<double>::infinity());
   }
 
   bool Contact::Screen::skips_search(double listed, double reach) const
   {
     return listed - shift >= reach;
+  }
+
+  bool Contact::Screen::skips_anchored(double anchored, double reach) const
+  {
+    // The margin, a part in 10^9 of the reach, stands for the round-off
+    // of the distances and of the clock: a pair this skips would have
+    // been found at or beyond its reach, so the search keeps the same
+    // pairs to the bit.
+    return anchored - clock > reach * (1 + 1e-9);
   }
 
   bool Contact::Screen::clears(double listed, double offset) const
@@ -473,10 +484,15 @@ namespace coshell::contact
     const Motion still{x, nullptr, invalid_obstacle, nullptr};
     if (covers(still, obstacle_screens, self_screen))
       return;
-    Candidates &c = candidates_;
-    c.margin      = candidate_margin();
-    c.shell       = x;
-    c.obstacles   = current_;
+    Candidates &c        = candidates_;
+    c.margin             = candidate_margin();
+    c.shell              = x;
+    c.obstacles          = current_;
+    c.searched_shell     = x;
+    c.searched_obstacles = current_;
+    c.shell_travel       = 0;
+    c.self_travel        = 0;
+    c.obstacle_travel.assign(current_.size(), 0);
     c.vertex_triangle.resize(current_.size());
     c.triangle_vertex.resize(current_.size());
     c.edge_edge.resize(current_.size());
@@ -487,6 +503,36 @@ namespace coshell::contact
       make_self_candidates(still, shell_tree, c.margin, true, c);
     obstacle_screens.assign(current_.size(), Screen());
     self_screen = Screen();
+  }
+
+  /// Between two searches every point of a pair's primitives moves by at
+  /// most the longest move of its side's vertices (the primitives are
+  /// convex hulls of them), so its distance changes by at most the two
+  /// sides' longest moves added: an obstacle's travel and the shell's.
+  /// Shell to shell, a common translation changes no distance, so self
+  /// pairs count twice the longest move less it.
+  void Contact::advance_search_clock(const std::vector<Point<3>> &x,
+                                     std::vector<Screen> &obstacle_screens,
+                                     Screen              &self_screen)
+  {
+    Candidates &c = candidates_;
+    c.shell_travel +=
+        largest_drift(&shell_vertices_, x, nullptr, c.searched_shell);
+    c.self_travel += 2 * largest_relative_drift(shell_vertices_, x, nullptr,
+                                                c.searched_shell);
+    c.searched_shell = x;
+    for (unsigned int o = 0; o < current_.size(); ++o)
+    {
+      const double move =
+          largest_drift(nullptr, current_[o], nullptr, c.searched_obstacles[o]);
+      if (move > 0)
+      {
+        c.obstacle_travel[o] += move;
+        c.searched_obstacles[o] = current_[o];
+      }
+      obstacle_screens[o].clock = c.shell_travel + c.obstacle_travel[o];
+    }
+    self_screen.clock = c.self_travel;
   }
 
   /// Largest fraction of the motion that keeps every pair farther apart

@@ -184,6 +184,7 @@ namespace coshell::contact
     std::vector<Screen> screens;
     Screen              self_screen;
     update_candidates(x, screens, self_screen);
+    advance_search_clock(x, screens, self_screen);
     PairSelector selector(*this);
     for (unsigned int o = 0; o < current_.size(); ++o)
     {
@@ -205,7 +206,7 @@ namespace coshell::contact
   {
     const auto &X         = current_[o];
     const auto &triangles = parameters_.obstacles[o].triangles;
-    const auto &rows      = candidates_.vertex_triangle[o];
+    auto       &rows      = candidates_.vertex_triangle[o];
     for (unsigned int k = 0; k < shell_vertices_.size(); ++k)
     {
       if (out_of_reach(screen, rows, k))
@@ -214,11 +215,13 @@ namespace coshell::contact
       const double   vertex_reach = pair_reach(offset(o, true, v));
       for (unsigned i = rows.start[k]; i < rows.start[k + 1]; ++i)
       {
-        if (screen.skips_search(rows.distance[i], vertex_reach))
+        if (screen.skips_search(rows.distance[i], vertex_reach) ||
+            screen.skips_anchored(rows.anchored[i], vertex_reach))
           continue;
         const auto &t = triangles[rows.other[i]];
         const auto  d =
             point_triangle_distance(x[v], X[t[0]], X[t[1]], X[t[2]], false);
+        rows.anchored[i] = std::sqrt(d.value) + screen.clock;
         if (std::sqrt(d.value) < vertex_reach)
           selector.add({{-1, -1, long(v)},
                         feature_vertices(t, d.feature),
@@ -236,7 +239,7 @@ namespace coshell::contact
   {
     const double activation =
         parameters_.method == Method::barrier ? activation_ : 0.0;
-    const auto &rows = candidates_.self_vertex_triangle;
+    auto &rows = candidates_.self_vertex_triangle;
     for (unsigned int k = 0; k < shell_vertices_.size(); ++k)
     {
       if (out_of_reach(screen, rows, k))
@@ -246,11 +249,13 @@ namespace coshell::contact
       {
         const unsigned triangle = rows.other[i];
         const double   reach    = self_offset(v, triangle) + activation;
-        if (screen.skips_search(rows.distance[i], reach))
+        if (screen.skips_search(rows.distance[i], reach) ||
+            screen.skips_anchored(rows.anchored[i], reach))
           continue;
         const auto &t = shell_triangles_[triangle];
         const auto  d =
             point_triangle_distance(x[v], x[t[0]], x[t[1]], x[t[2]], false);
+        rows.anchored[i] = std::sqrt(d.value) + screen.clock;
         if (std::sqrt(d.value) < reach)
           selector.add({{-1, -1, long(v)},
                         feature_vertices(t, d.feature),
@@ -268,7 +273,7 @@ namespace coshell::contact
                                            PairSelector &selector)
   {
     const auto &X    = current_[o];
-    const auto &rows = candidates_.triangle_vertex[o];
+    auto       &rows = candidates_.triangle_vertex[o];
     for (unsigned int j = 0; j < X.size(); ++j)
     {
       // Each pair's reach is the obstacle's, not its own offset's; an
@@ -277,12 +282,14 @@ namespace coshell::contact
         continue;
       for (unsigned i = rows.start[j]; i < rows.start[j + 1]; ++i)
       {
-        if (screen.skips_search(rows.distance[i], reach(o)))
+        if (screen.skips_search(rows.distance[i], reach(o)) ||
+            screen.skips_anchored(rows.anchored[i], reach(o)))
           continue;
         const unsigned triangle = rows.other[i];
         const auto    &t        = shell_triangles_[triangle];
         const auto     d =
             point_triangle_distance(X[j], x[t[0]], x[t[1]], x[t[2]], false);
+        rows.anchored[i] = std::sqrt(d.value) + screen.clock;
         // A shell vertex against an obstacle vertex is also the shell
         // vertex search's pair, with the vertex's thickness (the mean of
         // its triangles'). Where this triangle keeps the larger offset it
@@ -609,7 +616,7 @@ namespace coshell::contact
                                 PairSelector                &selector)
   {
     const auto &X    = current_[o];
-    const auto &rows = candidates_.edge_edge[o];
+    auto       &rows = candidates_.edge_edge[o];
     for (unsigned int e = 0; e < shell_edges_.size(); ++e)
     {
       if (out_of_reach(screen, rows, e))
@@ -618,12 +625,16 @@ namespace coshell::contact
       const double edge_reach = pair_reach(edge_offset(o, e));
       for (unsigned i = rows.start[e]; i < rows.start[e + 1]; ++i)
       {
-        if (screen.skips_search(rows.distance[i], edge_reach))
+        if (screen.skips_search(rows.distance[i], edge_reach) ||
+            screen.skips_anchored(rows.anchored[i], edge_reach))
           continue;
         const unsigned f  = rows.other[i];
         const auto [c, d] = obstacle_edges_[o][f];
-        offer_edge_pair(selector, {true, o, e, f, shell_edge_area_[e]},
-                        {x[a], x[b], X[c], X[d]}, {a, b, c, d}, edge_reach);
+        rows.anchored[i] =
+            offer_edge_pair(selector, {true, o, e, f, shell_edge_area_[e]},
+                            {x[a], x[b], X[c], X[d]}, {a, b, c, d},
+                            edge_reach) +
+            screen.clock;
       }
       selector.settle();
     }
@@ -634,22 +645,23 @@ namespace coshell::contact
 {
   using namespace dealii;
 
-  void Contact::offer_edge_pair(PairSelector                  &selector,
-                                Pair                           pair,
-                                const std::array<Point<3>, 4> &p,
-                                const std::array<unsigned, 4> &ids,
-                                double                         reach) const
+  double Contact::offer_edge_pair(PairSelector                  &selector,
+                                  Pair                           pair,
+                                  const std::array<Point<3>, 4> &p,
+                                  const std::array<unsigned, 4> &ids,
+                                  double                         reach) const
   {
     const double distance = std::sqrt(
         segment_segment_distance(p[0], p[1], p[2], p[3], false).value);
     if (distance >= reach)
-      return;
+      return distance;
     pair.edge_edge = true;
     selector.add({{-1, long(ids[0]), long(ids[1])},
                   {-1, long(ids[2]), long(ids[3])},
                   distance,
                   false},
                  pair);
+    return distance;
   }
 
   /// Self contact of shell edges: each allowed pair (e, f), e < f, once.
@@ -659,7 +671,7 @@ namespace coshell::contact
   {
     const double activation =
         parameters_.method == Method::barrier ? activation_ : 0.0;
-    const auto &rows = candidates_.self_edge_edge;
+    auto &rows = candidates_.self_edge_edge;
     for (unsigned int e = 0; e < shell_edges_.size(); ++e)
     {
       if (out_of_reach(screen, rows, e))
@@ -669,11 +681,15 @@ namespace coshell::contact
       {
         const unsigned f     = rows.other[i];
         const double   reach = self_edge_offset(e, f) + activation;
-        if (screen.skips_search(rows.distance[i], reach))
+        if (screen.skips_search(rows.distance[i], reach) ||
+            screen.skips_anchored(rows.anchored[i], reach))
           continue;
         const auto [c, d] = shell_edges_[f];
-        offer_edge_pair(selector, {true, 0, e, f, shell_edge_area_[e], true},
-                        {x[a], x[b], x[c], x[d]}, {a, b, c, d}, reach);
+        rows.anchored[i] =
+            offer_edge_pair(selector,
+                            {true, 0, e, f, shell_edge_area_[e], true},
+                            {x[a], x[b], x[c], x[d]}, {a, b, c, d}, reach) +
+            screen.clock;
       }
       selector.settle();
     }

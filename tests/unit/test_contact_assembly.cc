@@ -600,3 +600,66 @@ TEST(ContactAssembly, BlocksMadeBesideTheCellsAreThoseMadeInlineToTheBit)
       ASSERT_EQ(beside.second.serial().el(i, e->column()), e->value())
           << "entry (" << i << ", " << e->column() << ")";
 }
+
+namespace
+{
+  /// The force and tangent of a contact that has searched at every one of
+  /// the positions before against those of a contact made at this one,
+  /// compared to the bit.
+  void expect_same_assembly(const Assembled &searched,
+                            const Assembled &fresh,
+                            unsigned int     step)
+  {
+    const unsigned int n = searched.force.size();
+    for (unsigned int i = 0; i < n; ++i)
+    {
+      ASSERT_EQ(searched.force[i], fresh.force[i])
+          << "force " << i << " at step " << step;
+      for (unsigned int j = 0; j < n; ++j)
+        ASSERT_EQ(searched.tangent(i, j), fresh.tangent(i, j))
+            << "tangent (" << i << ", " << j << ") at step " << step;
+    }
+  }
+} // namespace
+
+// The pair search skips a listed pair whose distance, found at an
+// earlier search, is still beyond its reach after the largest moves
+// since (the search clock). A plate slid across a knife (vertex,
+// obstacle-vertex and edge-edge pairs) that tilts into it while the knife
+// rises: at every step the contact that searched at all the steps before
+// assembles what a contact made at that step assembles, to the bit.
+TEST(ContactAssembly, PairsSkippedByTheSearchClockAreThoseOutOfReach)
+{
+  UnitPlate                  plate;
+  contact::ContactParameters parameters = barrier_parameters();
+  parameters.obstacles                  = {knife(0.3, 0.01, 0.57)};
+  parameters.obstacles[0].motion.translation =
+      io::parse_expressions<1>("0; 0; 0.001 * t", 3, "x,t", true, "t", "test");
+  contact::Contact searched(plate.model, parameters);
+  searched.check_initial_configuration(plate.state, 0);
+  contact::ContactContribution contribution(searched);
+  const unsigned int           n = plate.model.n_dofs();
+  Vector<double>               move(n);
+  unsigned int                 steps_in_contact = 0;
+  for (unsigned int step = 1; step <= 40; ++step)
+  {
+    for (unsigned int v = 0; v < plate.surface.n_vertices(); ++v)
+    {
+      const auto &dofs = plate.model.vertex_dofs(v);
+      const auto &x    = plate.surface.get_vertices()[v];
+      move[dofs[0]]    = 0.03;
+      move[dofs[2]]    = 0.0005 * (1 + x[0]) + 0.0002 * (v % 3);
+    }
+    plate.state.apply_increment(move);
+    const Assembled  at_step = assemble(contribution, plate.state, step, n);
+    contact::Contact fresh(plate.model, parameters);
+    fresh.check_initial_configuration(plate.state, step);
+    contact::ContactContribution fresh_contribution(fresh);
+    expect_same_assembly(
+        at_step, assemble(fresh_contribution, plate.state, step, n), step);
+    if (searched.obstacle_loads()[0].active_pairs > 0)
+      ++steps_in_contact;
+  }
+  EXPECT_GE(steps_in_contact, 10u);
+  EXPECT_LE(steps_in_contact, 35u);
+}

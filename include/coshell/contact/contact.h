@@ -453,12 +453,13 @@ namespace coshell::contact
     void forget_gaps();
     class PairSelector;
     /// Adds the edge-edge pair (two edges, points p and mesh vertex ids)
-    /// to the selector if its distance is below 'reach'.
-    void offer_edge_pair(PairSelector                  &selector,
-                         Pair                           pair,
-                         const std::array<Point<3>, 4> &p,
-                         const std::array<unsigned, 4> &ids,
-                         double                         reach) const;
+    /// to the selector if its distance is below 'reach'; returns the
+    /// distance.
+    double offer_edge_pair(PairSelector                  &selector,
+                           Pair                           pair,
+                           const std::array<Point<3>, 4> &p,
+                           const std::array<unsigned, 4> &ids,
+                           double                         reach) const;
     /// Candidate pairs, in rows: per query primitive (a shell vertex, an
     /// obstacle vertex or a shell edge), the primitives of the other side
     /// ('other') whose boxes came within its reach plus the lists' margin,
@@ -474,6 +475,10 @@ namespace coshell::contact
       /// bit (the screens' tests are monotone in each), so the step filter
       /// and the pair search skip it without reading its pairs.
       std::vector<double> nearest, thickest;
+      /// Per pair: the distance the pair search last found, plus the
+      /// search clock's reading then (Screen::clock; length). -inf until
+      /// searched. Written by the search alone.
+      std::vector<double> anchored;
       /// The largest offset kept so far in the row end_row() closes next.
       double thickest_of_open_row = 0;
       void   clear();
@@ -499,16 +504,30 @@ namespace coshell::contact
       double                                     margin = -1;
       std::vector<CandidateRows> vertex_triangle, triangle_vertex, edge_edge;
       CandidateRows              self_vertex_triangle, self_edge_edge;
+      /// Where the last pair search found the shell and the obstacles,
+      /// and the longest move of any of their vertices from one search to
+      /// the next, summed since the lists were made (length); for self
+      /// contact twice the longest move less a common translation.
+      std::vector<dealii::Point<3>>              searched_shell;
+      std::vector<std::vector<dealii::Point<3>>> searched_obstacles;
+      double              shell_travel = 0, self_travel = 0;
+      std::vector<double> obstacle_travel;
     };
     /// What a listed pair's distance tells without computing it: the
     /// pair is now at most 'shift' nearer than when listed.
     struct Screen
     {
       double shift = 0;
+      /// The search clock of these pairs: their two sides' travels added
+      /// (Candidates; length). A pair is now at most clock - (the clock
+      /// when it was last searched) nearer than then.
+      double clock = 0;
       /// The longest move of any point of the filter's motion (length).
       double largest_move = std::numeric_limits<double>::infinity();
       /// True if the pair is out of 'reach' (no pair of the search).
       bool skips_search(double listed, double reach) const;
+      /// The same, by the distance the search last found (anchored).
+      bool skips_anchored(double anchored, double reach) const;
       /// True if skips_filter() is, whatever the pair's moves, by
       /// 'largest_move': decided before the pair's points are gathered.
       bool clears(double listed, double offset) const;
@@ -756,6 +775,11 @@ namespace coshell::contact
     /// The pairs within reach at x, from the candidate lists (made anew
     /// if they no longer cover x).
     void find_pairs(const std::vector<dealii::Point<3>> &x);
+    /// Adds the moves since the last search to the lists' travels and
+    /// sets the screens' clocks from them.
+    void advance_search_clock(const std::vector<dealii::Point<3>> &x,
+                              std::vector<Screen> &obstacle_screens,
+                              Screen              &self_screen);
     void find_shell_vertex_pairs(unsigned int                         obstacle,
                                  const std::vector<dealii::Point<3>> &x,
                                  const Screen                        &screen,
