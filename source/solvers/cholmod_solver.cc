@@ -1,4 +1,5 @@
 #include <coshell/solvers/cholmod_solver.h>
+#include <coshell/solvers/parallel_environment.h>
 
 #include "compressed_rows.h"
 
@@ -28,6 +29,8 @@ namespace coshell::solvers
     std::vector<int> source;
     /// The fill-reducing order: row k of P A P' is row order[k] of A.
     std::vector<int> order;
+    /// The factorization's floating-point operations, from the analysis.
+    double flops = 0;
     /// Kept between solves: the permuted right-hand side, the solution
     /// and CHOLMOD's workspaces.
     cholmod_dense *rhs = nullptr, *solution = nullptr, *work_y = nullptr,
@@ -145,6 +148,7 @@ namespace coshell::solvers
     common.method[0].ordering = CHOLMOD_NATURAL;
     common.postorder          = false; // already postordered
     factor                    = cholmod_analyze(permuted, &common);
+    flops                     = common.fl;
     common.nmethods           = methods;
     common.method[0].ordering = first;
     common.postorder          = post;
@@ -171,6 +175,14 @@ namespace coshell::solvers
       d.analyse();
     if (d.factor)
       d.permute_values();
+    // OpenBLAS shares a call between threads by its size alone, and the
+    // supernodes of a small factorization make calls it shares at a loss:
+    // the IOL's haptic step (1 890 DoFs, 4.7 Mflop) factorized 1.04x
+    // faster on one BLAS thread than on two. A clamped plate of 482 406
+    // DoFs solved no faster on two either (1.83 to 2.40 s against 1.66
+    // to 1.70 s), but larger machines may: the line is drawn low.
+    constexpr double smallest_shared_flops = 1e8;
+    const SerialBlas serial(d.flops < smallest_shared_flops);
     if (!d.factor || !cholmod_factorize(d.permuted, d.factor, &d.common) ||
         d.common.status == CHOLMOD_NOT_POSDEF)
       throw std::runtime_error(

@@ -207,6 +207,30 @@ namespace coshell::solvers
     }
   } // namespace
 
+  namespace
+  {
+    void set_blas_threads(unsigned int threads)
+    {
+      static const auto set =
+          find_function<void(int)>("openblas_set_num_threads");
+      if (set)
+        set(static_cast<int>(threads));
+    }
+  } // namespace
+
+  SerialBlas::SerialBlas(bool serial)
+      : serial_(serial && ThreadSettings::n_threads() > 1)
+  {
+    if (serial_)
+      set_blas_threads(1);
+  }
+
+  SerialBlas::~SerialBlas()
+  {
+    if (serial_)
+      set_blas_threads(ThreadSettings::n_threads());
+  }
+
   void ThreadSettings::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Parallel");
@@ -214,8 +238,10 @@ namespace coshell::solvers
                       "Number of threads for assembly, and for the BLAS "
                       "(OpenBLAS) the linear solvers use (dimensionless); "
                       "0 = all cores (capped by the environment variable "
-                      "DEAL_II_NUM_THREADS if set). OpenMP regions (CHOLMOD "
-                      "opens some) run on one thread at any setting.");
+                      "DEAL_II_NUM_THREADS if set). A CHOLMOD factorization "
+                      "of under 1e8 flops runs its BLAS on one thread, and "
+                      "OpenMP regions (CHOLMOD opens some) run on one "
+                      "thread at any setting.");
     prm.leave_subsection();
   }
 

@@ -2,6 +2,7 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <dlfcn.h>
 #include <gtest/gtest.h>
 #include <omp.h>
 
@@ -46,4 +47,32 @@ TEST(ThreadSettings, NoRegionThatAsksForMoreThreadsIsActiveAtAnyThreadCount)
   EXPECT_EQ(team_of_region_asking_for_four(), 1);
   EXPECT_EQ(omp_get_max_threads(),
             static_cast<int>(coshell::solvers::ThreadSettings::n_threads()));
+}
+
+// The BLAS on one thread while a SerialBlas lives, on the scheduler's
+// count before and after (OpenBLAS, found as coshell finds it; the test
+// says nothing where the process has another BLAS).
+TEST(ThreadSettings, SerialBlasRunsTheBlasOnOneThreadWhileItLives)
+{
+  const auto blas_threads = reinterpret_cast<int (*)()>(
+      dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
+  if (!blas_threads)
+    GTEST_SKIP() << "no OpenBLAS in this process";
+  set_threads("2");
+  if (coshell::solvers::ThreadSettings::n_threads() < 2)
+  {
+    set_threads("0");
+    GTEST_SKIP() << "one core: nothing to share";
+  }
+  EXPECT_EQ(blas_threads(), 2);
+  {
+    const coshell::solvers::SerialBlas serial(true);
+    EXPECT_EQ(blas_threads(), 1);
+  }
+  EXPECT_EQ(blas_threads(), 2);
+  {
+    const coshell::solvers::SerialBlas shared(false);
+    EXPECT_EQ(blas_threads(), 2);
+  }
+  set_threads("0");
 }

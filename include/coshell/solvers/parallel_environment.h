@@ -56,4 +56,19 @@ namespace coshell::solvers
     /// Threads deal.II's task scheduler uses.
     static unsigned int n_threads();
   };
+
+  /// While it lives (and if 'serial'), the BLAS runs on the calling
+  /// thread alone; after, on ThreadSettings::n_threads() again. For work
+  /// made of BLAS calls too small to share between threads.
+  class SerialBlas
+  {
+  public:
+    explicit SerialBlas(bool serial);
+    ~SerialBlas();
+    SerialBlas(const SerialBlas &)            = delete;
+    SerialBlas &operator=(const SerialBlas &) = delete;
+
+  private:
+    bool serial_;
+  };
 } // namespace coshell::solvers
