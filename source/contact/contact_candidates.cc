@@ -201,16 +201,18 @@ namespace coshell::contact
 
   void Contact::CandidateRows::end_row()
   {
-    const unsigned int        first = start.back(), n = other.size() - first;
-    std::vector<unsigned int> order(n);
+    const unsigned int first = start.back(), n = other.size() - first;
+    // Kept per thread: the lists are made a row at a time, a vertex's or
+    // an edge's, and three allocations a row showed in the profile.
+    thread_local std::vector<unsigned int> order, row_other;
+    thread_local std::vector<double>       row_distance;
+    order.resize(n);
     std::iota(order.begin(), order.end(), 0u);
     std::sort(order.begin(), order.end(),
               [&](unsigned a, unsigned b)
               { return other[first + a] < other[first + b]; });
-    const std::vector<unsigned int> row_other(other.begin() + first,
-                                              other.end());
-    const std::vector<double>       row_distance(distance.begin() + first,
-                                                 distance.end());
+    row_other.assign(other.begin() + first, other.end());
+    row_distance.assign(distance.begin() + first, distance.end());
     for (unsigned int k = 0; k < n; ++k)
     {
       other[first + k]    = row_other[order[k]];
