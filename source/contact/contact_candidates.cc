@@ -518,10 +518,19 @@ namespace coshell::contact
                                      Screen              &self_screen)
   {
     Candidates &c = candidates_;
+    // std::max drops a NaN: a position gone non-finite (a diverged
+    // correction) stops the clock's skips instead, until the lists are
+    // made anew.
+    double sum = 0;
+    for (const unsigned int v : shell_vertices_)
+      sum += x[v][0] + x[v][1] + x[v][2];
+    if (!std::isfinite(sum))
+      c.shell_travel = c.self_travel = std::numeric_limits<double>::infinity();
     c.shell_travel +=
         largest_drift(&shell_vertices_, x, nullptr, c.searched_shell);
-    c.self_travel += 2 * largest_relative_drift(shell_vertices_, x, nullptr,
-                                                c.searched_shell);
+    if (parameters_.self_contact)
+      c.self_travel += 2 * largest_relative_drift(shell_vertices_, x, nullptr,
+                                                  c.searched_shell);
     c.searched_shell = x;
     for (unsigned int o = 0; o < current_.size(); ++o)
     {

@@ -438,20 +438,22 @@ namespace coshell::contact
     normal_forces_.clear();
   }
 
-  /// Energy w phi(g) of a pair, g = |d| - offset, w = stiffness * area:
-  /// its gradient and Hessian by the chain rule through d = sqrt(s),
-  /// dg = ds / (2d), d2g = d2s / (2d) - ds ds^T / (4 d^3).
   bool Contact::beyond_reach(const Pair &pair) const
   {
-    // Listed pairs within the obstacle's reach (its thickest offset) but
-    // beyond their own offset carry no force: 78 % of the pairs on the
-    // IOL's haptic bed. The margin (a millionth of a part per thousand)
-    // covers the round-off between the search's distance and the one
-    // made again below, so a pair this skips would have come out of
-    // phi(gap) as exactly zero: the terms are the same to the bit.
+    // Obstacle vertices are searched within the obstacle's reach (its
+    // thickest offset); the pairs they list beyond their own triangle's
+    // offset carry no force: 78 % of the pairs on the IOL's haptic bed.
+    // (The other kinds are searched within their own reach.) The margin (a
+    // millionth of a part per thousand) covers the round-off between the
+    // search's distance and the one made again below, so a pair this skips
+    // would have come out of phi(gap) as exactly zero: the terms are the same
+    // to the bit.
     return pair.searched_distance > pair_reach(offset(pair)) * (1 + 1e-9);
   }
 
+  /// Energy w phi(g) of a pair, g = |d| - offset, w = stiffness * area:
+  /// its gradient and Hessian by the chain rule through d = sqrt(s),
+  /// dg = ds / (2d), d2g = d2s / (2d) - ds ds^T / (4 d^3).
   void Contact::add_pair_terms(const model::ShellState & /*state*/,
                                const model::BlockSink &sink,
                                bool                    with_tangent)

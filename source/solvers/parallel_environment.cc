@@ -209,26 +209,35 @@ namespace coshell::solvers
 
   namespace
   {
-    void set_blas_threads(unsigned int threads)
+    /// OpenBLAS's thread count (0: no OpenBLAS in the process).
+    int blas_threads()
+    {
+      static const auto get = find_function<int()>("openblas_get_num_threads");
+      return get ? get() : 0;
+    }
+
+    void set_blas_threads(int threads)
     {
       static const auto set =
           find_function<void(int)>("openblas_set_num_threads");
       if (set)
-        set(static_cast<int>(threads));
+        set(threads);
     }
   } // namespace
 
   SerialBlas::SerialBlas(bool serial)
-      : serial_(serial && ThreadSettings::n_threads() > 1)
+      : threads_before_(serial ? blas_threads() : 0)
   {
-    if (serial_)
+    // The count before is put back, not Parallel/Threads': a program
+    // that set OpenBLAS itself keeps its setting.
+    if (threads_before_ > 1)
       set_blas_threads(1);
   }
 
   SerialBlas::~SerialBlas()
   {
-    if (serial_)
-      set_blas_threads(ThreadSettings::n_threads());
+    if (threads_before_ > 1)
+      set_blas_threads(threads_before_);
   }
 
   void ThreadSettings::declare_parameters(ParameterHandler &prm)

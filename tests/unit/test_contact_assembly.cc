@@ -624,15 +624,19 @@ namespace
 
 // The pair search skips a listed pair whose distance, found at an
 // earlier search, is still beyond its reach after the largest moves
-// since (the search clock). A plate slid across a knife (vertex,
-// obstacle-vertex and edge-edge pairs) that tilts into it while the knife
-// rises: at every step the contact that searched at all the steps before
-// assembles what a contact made at that step assembles, to the bit.
+// since (the search clock). A plate slid across a knife that rises
+// (shell vertices and edges against it) and away from a plane that sinks
+// with a vertex under the plate (that vertex against the plate's
+// triangles, its pairs leaving the barrier's reach): at every step the contact
+// that searched at all the steps before assembles what a contact made at that
+// step assembles, to the bit.
 TEST(ContactAssembly, PairsSkippedByTheSearchClockAreThoseOutOfReach)
 {
   UnitPlate                  plate;
   contact::ContactParameters parameters = barrier_parameters();
-  parameters.obstacles                  = {knife(0.3, 0.01, 0.57)};
+  parameters.obstacles = {knife(0.3, 0.01, 0.57), plane(-0.58, 0)};
+  parameters.obstacles[1].motion.translation =
+      io::parse_expressions<1>("0; 0; -0.002 * t", 3, "x,t", true, "t", "test");
   parameters.obstacles[0].motion.translation =
       io::parse_expressions<1>("0; 0; 0.001 * t", 3, "x,t", true, "t", "test");
   contact::Contact searched(plate.model, parameters);
@@ -640,7 +644,7 @@ TEST(ContactAssembly, PairsSkippedByTheSearchClockAreThoseOutOfReach)
   contact::ContactContribution contribution(searched);
   const unsigned int           n = plate.model.n_dofs();
   Vector<double>               move(n);
-  unsigned int                 steps_in_contact = 0;
+  unsigned int                 steps_in_contact = 0, steps_on_plane = 0;
   for (unsigned int step = 1; step <= 40; ++step)
   {
     for (unsigned int v = 0; v < plate.surface.n_vertices(); ++v)
@@ -659,7 +663,11 @@ TEST(ContactAssembly, PairsSkippedByTheSearchClockAreThoseOutOfReach)
         at_step, assemble(fresh_contribution, plate.state, step, n), step);
     if (searched.obstacle_loads()[0].active_pairs > 0)
       ++steps_in_contact;
+    if (searched.obstacle_loads()[1].active_pairs > 0)
+      ++steps_on_plane;
   }
   EXPECT_GE(steps_in_contact, 10u);
   EXPECT_LE(steps_in_contact, 35u);
+  EXPECT_GE(steps_on_plane, 1u);
+  EXPECT_LT(steps_on_plane, 40u);
 }

@@ -58,8 +58,8 @@ namespace coshell::solvers
   };
 
   /// While it lives (and if 'serial'), the BLAS runs on the calling
-  /// thread alone; after, on ThreadSettings::n_threads() again. For work
-  /// made of BLAS calls too small to share between threads.
+  /// thread alone; after, on as many threads as before. For work made of
+  /// BLAS calls too small to share between threads.
   class SerialBlas
   {
   public:
@@ -69,6 +69,7 @@ namespace coshell::solvers
     SerialBlas &operator=(const SerialBlas &) = delete;
 
   private:
-    bool serial_;
+    /// OpenBLAS's thread count when made (0: not serial, or no OpenBLAS).
+    int threads_before_;
   };
 } // namespace coshell::solvers
