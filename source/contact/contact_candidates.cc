@@ -105,6 +105,15 @@ namespace coshell::contact
       return d ? (*d)[i] : Tensor<1, 3>();
     }
 
+    /// largest = max(largest, value), except that a NaN stays: std::max
+    /// drops it, and a drift or a clock that forgot a non-finite position
+    /// (a diverged correction) would let the screens skip pairs wrongly.
+    /// A NaN drift skips nothing (every screen compares false).
+    void keep_largest(double &largest, double value)
+    {
+      largest = value > largest || std::isnan(value) ? value : largest;
+    }
+
     /// The largest distance of the points (moved by d, if given) from
     /// 'listed', at the start and at the end of the motion.
     double largest_drift(const std::vector<unsigned int> *used,
@@ -115,10 +124,9 @@ namespace coshell::contact
       double     largest = 0;
       const auto visit   = [&](unsigned int i)
       {
-        largest = std::max(largest, (x[i] - listed[i]).norm_square());
+        keep_largest(largest, (x[i] - listed[i]).norm_square());
         if (d)
-          largest =
-              std::max(largest, (x[i] + (*d)[i] - listed[i]).norm_square());
+          keep_largest(largest, (x[i] + (*d)[i] - listed[i]).norm_square());
       };
       if (used)
         for (const unsigned int i : *used)
@@ -172,7 +180,7 @@ namespace coshell::contact
         }
         const Tensor<1, 3> centre = 0.5 * (lower + upper);
         for (const unsigned int i : used)
-          largest = std::max(largest, (drift(i) - centre).norm_square());
+          keep_largest(largest, (drift(i) - centre).norm_square());
       }
       return std::sqrt(largest);
     }
@@ -517,15 +525,9 @@ namespace coshell::contact
                                      std::vector<Screen> &obstacle_screens,
                                      Screen              &self_screen)
   {
+    // A non-finite position makes a travel NaN (keep_largest), and the
+    // clock then skips nothing until the lists are made anew.
     Candidates &c = candidates_;
-    // std::max drops a NaN: a position gone non-finite (a diverged
-    // correction) stops the clock's skips instead, until the lists are
-    // made anew.
-    double sum = 0;
-    for (const unsigned int v : shell_vertices_)
-      sum += x[v][0] + x[v][1] + x[v][2];
-    if (!std::isfinite(sum))
-      c.shell_travel = c.self_travel = std::numeric_limits<double>::infinity();
     c.shell_travel +=
         largest_drift(&shell_vertices_, x, nullptr, c.searched_shell);
     if (parameters_.self_contact)

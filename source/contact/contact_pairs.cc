@@ -221,11 +221,12 @@ namespace coshell::contact
         const auto &t = triangles[rows.other[i]];
         const auto  d =
             point_triangle_distance(x[v], X[t[0]], X[t[1]], X[t[2]], false);
-        rows.anchored[i] = std::sqrt(d.value) + screen.clock;
-        if (std::sqrt(d.value) < vertex_reach)
+        const double distance = std::sqrt(d.value);
+        rows.anchored[i]      = distance + screen.clock;
+        if (distance < vertex_reach)
           selector.add({{-1, -1, long(v)},
                         feature_vertices(t, d.feature),
-                        std::sqrt(d.value),
+                        distance,
                         false},
                        {true, o, v, rows.other[i], shell_vertex_area_[v]});
       }
@@ -255,11 +256,12 @@ namespace coshell::contact
         const auto &t = shell_triangles_[triangle];
         const auto  d =
             point_triangle_distance(x[v], x[t[0]], x[t[1]], x[t[2]], false);
-        rows.anchored[i] = std::sqrt(d.value) + screen.clock;
-        if (std::sqrt(d.value) < reach)
+        const double distance = std::sqrt(d.value);
+        rows.anchored[i]      = distance + screen.clock;
+        if (distance < reach)
           selector.add({{-1, -1, long(v)},
                         feature_vertices(t, d.feature),
-                        std::sqrt(d.value),
+                        distance,
                         false},
                        {true, 0, v, triangle, shell_vertex_area_[v], true});
       }
@@ -289,7 +291,8 @@ namespace coshell::contact
         const auto    &t        = shell_triangles_[triangle];
         const auto     d =
             point_triangle_distance(X[j], x[t[0]], x[t[1]], x[t[2]], false);
-        rows.anchored[i] = std::sqrt(d.value) + screen.clock;
+        const double distance = std::sqrt(d.value);
+        rows.anchored[i]      = distance + screen.clock;
         // A shell vertex against an obstacle vertex is also the shell
         // vertex search's pair, with the vertex's thickness (the mean of
         // its triangles'). Where this triangle keeps the larger offset it
@@ -298,11 +301,11 @@ namespace coshell::contact
         const bool vertex_vertex =
             d.feature < 3 &&
             offset(o, false, triangle) <= offset(o, true, t[d.feature]);
-        if (std::sqrt(d.value) < reach(o))
+        if (distance < reach(o))
           selector.add(
               {feature_vertices(t, d.feature),
                {-1, -1, long(j)},
-               std::sqrt(d.value),
+               distance,
                true,
                !vertex_vertex},
               {false, o, triangle, j, shell_triangle_area_[triangle] / 3});
