@@ -23,15 +23,19 @@ namespace coshell::model
                                       where);
     }
 
-    /// The three entries of a cell vertex's DoFs from 'first' on.
-    Tensor<1, 3> vertex_slot(const Vector<double> &values,
+    /// The three entries of a cell vertex's DoFs from 'first' on, through
+    /// the model's table of vertex DoFs: deal.II's vertex_dof_index() was
+    /// most of the cost of a cell's rates.
+    Tensor<1, 3> vertex_slot(const ShellModel     &model,
+                             const Vector<double> &values,
                              const CellIterator   &cell,
                              unsigned int          v,
                              unsigned int          first)
     {
-      Tensor<1, 3> x;
+      const VertexDofs &dofs = model.vertex_dofs(cell->vertex_index(v));
+      Tensor<1, 3>      x;
       for (unsigned int d = 0; d < 3; ++d)
-        x[d] = values[cell->vertex_dof_index(v, first + d)];
+        x[d] = values[dofs[first + d]];
       return x;
     }
 
@@ -160,7 +164,7 @@ namespace coshell::model
         rate == Rate::velocity ? state.velocity() : state.acceleration();
     const auto slot =
         [&](const Vector<double> &values, unsigned int v, unsigned int first)
-    { return vertex_slot(values, cell, v, first); };
+    { return vertex_slot(model_, values, cell, v, first); };
     std::array<double, element::shell_dofs> spatial;
     for (unsigned int v = 0; v < 3; ++v)
     {
@@ -199,7 +203,7 @@ namespace coshell::model
       return;
     const auto slot =
         [&](const Vector<double> &values, unsigned int v, unsigned int first)
-    { return vertex_slot(values, cell, v, first); };
+    { return vertex_slot(model_, values, cell, v, first); };
     for (unsigned int v = 0; v < 3; ++v)
     {
       const unsigned int  vertex = cell->vertex_index(v);
@@ -405,11 +409,13 @@ namespace coshell::model
     class GlobalEntries
     {
     public:
-      GlobalEntries(Vector<double> &vector, const CellIterator &cell)
+      GlobalEntries(Vector<double>     &vector,
+                    const ShellModel   &model,
+                    const CellIterator &cell)
           : vector_(vector)
       {
         for (unsigned int i = 0; i < element::shell_dofs; ++i)
-          dofs_[i] = cell->vertex_dof_index(i / 6, i % 6);
+          dofs_[i] = model.vertex_dofs(cell->vertex_index(i / 6))[i % 6];
       }
       double &operator[](unsigned int i)
       {
@@ -582,7 +588,7 @@ namespace coshell::model
       const auto current  = current_triangle(model_, cell, state);
       if (sparse)
       {
-        GlobalEntries global(force, cell);
+        GlobalEntries global(force, model_, cell);
         sparse_damping(parameters_, current,
                        element::shell_mass_entries(model_.triangle(cell),
                                                    mass_properties(cell)),
@@ -594,9 +600,10 @@ namespace coshell::model
                           matrices.mass);
       FullMatrix<double> &c = matrices.damping;
       damping(cell, current, matrices.mass, c, matrices.drag);
+      GlobalEntries global(force, model_, cell);
       for (unsigned int i = 0; i < element::shell_dofs; ++i)
       {
-        double &entry = force[cell->vertex_dof_index(i / 6, i % 6)];
+        double &entry = global[i];
         for (unsigned int j = 0; j < element::shell_dofs; ++j)
           entry += c(i, j) * velocity[j];
       }

@@ -14,8 +14,11 @@ namespace coshell::model
   {
     element::SpatialTriangle current = model.triangle(cell);
     for (unsigned int v = 0; v < 3; ++v)
+    {
+      const VertexDofs &dofs = model.vertex_dofs(cell->vertex_index(v));
       for (unsigned int d = 0; d < 3; ++d)
-        current[v][d] += state.values()[cell->vertex_dof_index(v, ux + d)];
+        current[v][d] += state.values()[dofs[ux + d]];
+    }
     return current;
   }
 

@@ -201,8 +201,11 @@ namespace coshell::model
       const Tensor<1, 3> vertex_force =
           force_per_area * element::area(model.triangle(cell)) / 3.0;
       for (unsigned int v = 0; v < 3; ++v)
+      {
+        const VertexDofs &dofs = model.vertex_dofs(cell->vertex_index(v));
         for (unsigned int d = 0; d < 3; ++d)
-          rhs[cell->vertex_dof_index(v, d)] += vertex_force[d];
+          rhs[dofs[ux + d]] += vertex_force[d];
+      }
     }
   }
 

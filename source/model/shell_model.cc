@@ -268,11 +268,6 @@ namespace coshell::model
     return dof_handler_.n_dofs();
   }
 
-  const VertexDofs &ShellModel::vertex_dofs(unsigned int v) const
-  {
-    return vertex_dofs_.at(v);
-  }
-
   bool ShellModel::vertex_is_used(unsigned int v) const
   {
     return vertex_dofs_.at(v)[0] != numbers::invalid_dof_index;

@@ -73,9 +73,16 @@ namespace coshell::model
     const dealii::IndexSet &locally_owned_dofs() const;
 
     /// DoFs of vertex 'v' (a Triangulation vertex index). Only vertices
-    /// used by a cell have DoFs.
-    const VertexDofs &vertex_dofs(unsigned int v) const;
-    bool              vertex_is_used(unsigned int v) const;
+    /// used by a cell have DoFs. Inline: the cell loops look up every
+    /// vertex of every cell through it, in place of deal.II's slower
+    /// vertex_dof_index().
+    const VertexDofs &vertex_dofs(unsigned int v) const
+    {
+      Assert(v < vertex_dofs_.size(),
+             dealii::ExcIndexRange(v, 0, vertex_dofs_.size()));
+      return vertex_dofs_[v];
+    }
+    bool vertex_is_used(unsigned int v) const;
     /// A vector in the DoF layout rearranged by mesh vertex (6 entries per
     /// Triangulation vertex, component fastest, 0 at unused vertices), and
     /// back: a layout that does not depend on the DoF numbering, which
