@@ -73,6 +73,7 @@ namespace coshell::contact
     current_.resize(n);
     target_.resize(n);
     obstacle_trees_.resize(n);
+    obstacle_moves_.assign(n, 1);
     obstacle_friction_.resize(n);
     for (unsigned int o = 0; o < n; ++o)
       obstacle_friction_[o] = parameters_.obstacles[o].friction_coefficient;
@@ -183,9 +184,18 @@ namespace coshell::contact
     return offset + (parameters_.method == Method::barrier ? activation_ : 0.0);
   }
 
-  void Contact::rebuild_tree(unsigned int obstacle)
+  void Contact::obstacle_moved(unsigned int obstacle)
   {
     obstacle_trees_[obstacle].reset();
+    ++obstacle_moves_[obstacle];
+  }
+
+  std::uint64_t Contact::obstacle_stamp(unsigned int o) const
+  {
+    for (const Point<3> &p : current_[o])
+      if (!std::isfinite(p.norm_square()))
+        return 0;
+    return obstacle_moves_[o];
   }
 
   const Contact::Tree &Contact::obstacle_tree(unsigned int o) const
@@ -358,7 +368,7 @@ namespace coshell::contact
           current_[o][i] += fraction * dX[i];
         pending_ = true;
       }
-      rebuild_tree(o);
+      obstacle_moved(o);
     }
   }
 
@@ -374,7 +384,7 @@ namespace coshell::contact
       if (current_[o].empty()) // first use: no sweep from nowhere
       {
         current_[o] = target_[o];
-        rebuild_tree(o);
+        obstacle_moved(o);
       }
     }
   }
@@ -477,7 +487,7 @@ namespace coshell::contact
       {
         detection.trees_after[o] = std::move(obstacle_trees_[o]);
         current_[o]              = trial_current_[o];
-        rebuild_tree(o);
+        obstacle_moved(o);
       }
     trial_detection_ = std::move(detection);
   }
@@ -495,6 +505,7 @@ namespace coshell::contact
       {
         current_[o]        = std::move(detection->obstacles_after[o]);
         obstacle_trees_[o] = std::move(detection->trees_after[o]);
+        ++obstacle_moves_[o];
       }
     pending_ = detection->pending;
     pairs_   = std::move(detection->pairs);
@@ -509,7 +520,7 @@ namespace coshell::contact
       return;
     current_ = saved_;
     for (unsigned int o = 0; o < current_.size(); ++o)
-      rebuild_tree(o);
+      obstacle_moved(o);
   }
 
   bool Contact::use_projected_tangent()
@@ -528,7 +539,7 @@ namespace coshell::contact
     for (unsigned int o = 0; o < current_.size(); ++o)
     {
       current_[o] = target_[o];
-      rebuild_tree(o);
+      obstacle_moved(o);
     }
     saved_           = current_;
     positions_       = shell_positions(state);

@@ -313,9 +313,12 @@ namespace coshell::contact
     obstacle_screens.resize(current_.size());
     for (unsigned int o = 0; o < current_.size(); ++o)
     {
-      const auto  *dX = o == motion.moving ? motion.dX : nullptr;
-      const double now =
-          largest_drift(nullptr, current_[o], nullptr, c.obstacles[o]);
+      const auto *dX = o == motion.moving ? motion.dX : nullptr;
+      // Positions the lists saw, to the bit: no drift.
+      const bool   unmoved = c.obstacle_stamps[o] == obstacle_moves_[o];
+      const double now     = unmoved ? 0
+                                     : largest_drift(nullptr, current_[o], nullptr,
+                                                     c.obstacles[o]);
       const double swept =
           dX ? largest_drift(nullptr, current_[o], dX, c.obstacles[o]) : now;
       if (shell_swept + swept > c.margin)
@@ -500,8 +503,12 @@ namespace coshell::contact
     c.obstacles          = current_;
     c.searched_shell     = x;
     c.searched_obstacles = current_;
-    c.shell_travel       = 0;
-    c.self_travel        = 0;
+    c.obstacle_stamps.resize(current_.size());
+    for (unsigned int o = 0; o < current_.size(); ++o)
+      c.obstacle_stamps[o] = obstacle_stamp(o);
+    c.searched_stamps = c.obstacle_stamps;
+    c.shell_travel    = 0;
+    c.self_travel     = 0;
     c.obstacle_travel.assign(current_.size(), 0);
     c.vertex_triangle.resize(current_.size());
     c.triangle_vertex.resize(current_.size());
@@ -536,12 +543,17 @@ namespace coshell::contact
     c.searched_shell = x;
     for (unsigned int o = 0; o < current_.size(); ++o)
     {
-      const double move =
-          largest_drift(nullptr, current_[o], nullptr, c.searched_obstacles[o]);
-      if (move > 0)
+      if (c.searched_stamps[o] != obstacle_moves_[o])
       {
-        c.obstacle_travel[o] += move;
-        c.searched_obstacles[o] = current_[o];
+        const double move = largest_drift(nullptr, current_[o], nullptr,
+                                          c.searched_obstacles[o]);
+        if (move > 0)
+        {
+          c.obstacle_travel[o] += move;
+          c.searched_obstacles[o] = current_[o];
+        }
+        // A finite move saw finite positions (a NaN stays in the drift).
+        c.searched_stamps[o] = std::isfinite(move) ? obstacle_moves_[o] : 0;
       }
       obstacle_screens[o].clock = c.shell_travel + c.obstacle_travel[o];
     }

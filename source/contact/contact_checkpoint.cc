@@ -81,7 +81,7 @@ namespace coshell::contact
       const auto &force = array(arrays, "contact_shell_force_" + number, 0);
       shell_force_[o] =
           model_.from_vertex_order(Vector<double>(force.begin(), force.end()));
-      rebuild_tree(o);
+      obstacle_moved(o);
     }
     saved_shell_force_ = shell_force_;
     saved_             = current_;

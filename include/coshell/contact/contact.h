@@ -13,6 +13,7 @@
 #include <deal.II/numerics/rtree.h>
 
 #include <array>
+#include <cstdint>
 #include <initializer_list>
 #include <limits>
 #include <map>
@@ -376,7 +377,12 @@ namespace coshell::contact
     /// while the candidate lists that search the tree are kept over many
     /// steps (building it at each move was 3 % of a haptic step).
     mutable std::vector<std::optional<Tree>> obstacle_trees_;
-    std::vector<Pair>                        pairs_;
+    /// How often each obstacle's positions have changed (from 1): a list
+    /// made at a count still current saw the same positions, and the
+    /// drifts need not be summed over the obstacle's vertices (a still
+    /// cartridge has thousands; 2 % of a haptic step).
+    std::vector<std::uint64_t>    obstacle_moves_;
+    std::vector<Pair>             pairs_;
     std::vector<dealii::Point<3>> positions_;       ///< shell, at prepare()
     std::vector<dealii::Point<3>> saved_positions_; ///< at save()
     double                        saved_time_ = 0;
@@ -510,8 +516,10 @@ namespace coshell::contact
       /// contact twice the longest move less a common translation.
       std::vector<dealii::Point<3>>              searched_shell;
       std::vector<std::vector<dealii::Point<3>>> searched_obstacles;
-      double              shell_travel = 0, self_travel = 0;
-      std::vector<double> obstacle_travel;
+      /// obstacle_stamp() of 'obstacles' and of 'searched_obstacles'.
+      std::vector<std::uint64_t> obstacle_stamps, searched_stamps;
+      double                     shell_travel = 0, self_travel = 0;
+      std::vector<double>        obstacle_travel;
     };
     /// What a listed pair's distance tells without computing it: the
     /// pair is now at most 'shift' nearer than when listed.
@@ -706,8 +714,12 @@ namespace coshell::contact
                     const std::vector<dealii::Tensor<1, 3>> *dx) const;
     std::vector<dealii::Point<3>>
     shell_positions(const model::ShellState &state) const;
-    /// Marks obstacle o's tree for a rebuild where it is now.
-    void rebuild_tree(unsigned int obstacle);
+    /// Obstacle o's positions (current_[o]) changed: marks its tree for a
+    /// rebuild where it is now and counts the change (obstacle_moves_).
+    void obstacle_moved(unsigned int obstacle);
+    /// obstacle_moves_[o] if obstacle o's positions are all finite, else
+    /// 0 (no count): a stamp the lists keep of the positions they saw.
+    std::uint64_t obstacle_stamp(unsigned int o) const;
     /// Obstacle o's tree where it is now (built if marked).
     const Tree &obstacle_tree(unsigned int o) const;
     double      max_reach() const;
