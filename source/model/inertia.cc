@@ -127,6 +127,19 @@ namespace coshell::model
       : model_(model), parameters_(parameters),
         body_frame_translations_(body_frame_translations)
   {
+    // The mass of a cell is of its reference triangle and material, fixed
+    // for the model's life (as the element stiffness InternalForce keeps):
+    // made once, not at every cell of every evaluation.
+    mass_entries_.resize(model.surface().n_active_cells());
+    for (const auto &cell : model.dof_handler().active_cell_iterators())
+      mass_entries_[cell->active_cell_index()] = element::shell_mass_entries(
+          model.triangle(cell), mass_properties(cell));
+  }
+
+  const element::MassEntries &
+  Inertia::mass_entries(const CellIterator &cell) const
+  {
+    return mass_entries_[cell->active_cell_index()];
   }
 
   element::MassProperties
@@ -456,9 +469,8 @@ namespace coshell::model
                                 CellContribution      &contribution,
                                 bool                   with_tangent) const
   {
-    const ShellState &state = point.state;
-    const auto entries      = element::shell_mass_entries(model_.triangle(cell),
-                                                          mass_properties(cell));
+    const ShellState      &state   = point.state;
+    const auto            &entries = mass_entries(cell);
     const SparseCellMatrix mass(entries);
     mass.add_times(-1, spatial_rates(cell, state, Rate::acceleration),
                    contribution.vector);
@@ -558,9 +570,7 @@ namespace coshell::model
       const auto velocity = spatial_rates(cell, state, Rate::velocity);
       std::array<double, element::shell_dofs> momentum{};
       if (sparse)
-        SparseCellMatrix(element::shell_mass_entries(model_.triangle(cell),
-                                                     mass_properties(cell)))
-            .add_times(1, velocity, momentum);
+        SparseCellMatrix(mass_entries(cell)).add_times(1, velocity, momentum);
       else
       {
         element::shell_mass(model_.triangle(cell), mass_properties(cell), mass);
@@ -589,10 +599,7 @@ namespace coshell::model
       if (sparse)
       {
         GlobalEntries global(force, model_, cell);
-        sparse_damping(parameters_, current,
-                       element::shell_mass_entries(model_.triangle(cell),
-                                                   mass_properties(cell)),
-                       matrices.drag)
+        sparse_damping(parameters_, current, mass_entries(cell), matrices.drag)
             .add_times(1, velocity, global);
         continue;
       }

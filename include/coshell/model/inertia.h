@@ -8,6 +8,7 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <string>
+#include <vector>
 
 namespace coshell::model
 {
@@ -77,6 +78,10 @@ namespace coshell::model
     InertiaParameters parameters_;
 
     element::MassProperties mass_properties(const CellIterator &cell) const;
+    /// Each active cell's mass entries (by active cell index), made by the
+    /// constructor.
+    std::vector<element::MassEntries> mass_entries_;
+    const element::MassEntries &mass_entries(const CellIterator &cell) const;
 
     bool body_frame_translations_;
 
