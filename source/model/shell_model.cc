@@ -236,6 +236,13 @@ namespace coshell::model
     return locally_owned_dofs_;
   }
 
+  void ShellModel::throw_not_a_vertex(unsigned int v) const
+  {
+    throw std::out_of_range("vertex " + std::to_string(v) +
+                            " is not a vertex of the mesh (it has " +
+                            std::to_string(vertex_dofs_.size()) + ")");
+  }
+
   void ShellModel::number_vertex_dofs()
   {
     const global_dof_index invalid = numbers::invalid_dof_index;
