@@ -32,11 +32,8 @@ namespace coshell::model
                              unsigned int          v,
                              unsigned int          first)
     {
-      const VertexDofs &dofs = model.vertex_dofs(cell->vertex_index(v));
-      Tensor<1, 3>      x;
-      for (unsigned int d = 0; d < 3; ++d)
-        x[d] = values[dofs[first + d]];
-      return x;
+      return vertex_block(values, model.vertex_dofs(cell->vertex_index(v)),
+                          first);
     }
 
     void require_non_negative(double value, const std::string &name)

@@ -14,11 +14,8 @@ namespace coshell::model
   {
     element::SpatialTriangle current = model.triangle(cell);
     for (unsigned int v = 0; v < 3; ++v)
-    {
-      const VertexDofs &dofs = model.vertex_dofs(cell->vertex_index(v));
-      for (unsigned int d = 0; d < 3; ++d)
-        current[v][d] += state.values()[dofs[ux + d]];
-    }
+      current[v] += vertex_block(state.values(),
+                                 model.vertex_dofs(cell->vertex_index(v)), ux);
     return current;
   }
 
