@@ -120,12 +120,14 @@ namespace coshell::driver
       prm.enter_subsection("Modal analysis");
       prm.declare_entry("Number of modes", "6", Patterns::Integer(1),
                         "Analysis/Type = modes: how many of the lowest natural "
-                        "frequencies to compute (dimensionless).");
+                        "frequencies to compute. Unit: dimensionless (a "
+                        "count).");
       prm.declare_entry("Shift", "0", Patterns::Double(),
-                        "sigma of the shift-invert Lanczos iteration, in 1/s^2 "
-                        "(omega^2 units): the modes nearest it are found. A "
+                        "sigma of the shift-invert Lanczos iteration, in "
+                        "omega^2 units: the modes nearest it are found. A "
                         "negative value lets an unsupported structure (with "
-                        "rigid-body modes) be analysed.");
+                        "rigid-body modes) be analysed. Unit: 1/time^2 "
+                        "(1/s^2).");
       prm.leave_subsection();
     }
 
@@ -154,23 +156,24 @@ namespace coshell::driver
           "Checkpoint interval", "0", Patterns::Double(0),
           "Dynamic stages: write checkpoint-NNNNNN.h5 (HDF5; NNNNNN the "
           "step) to the output directory whenever the time passes a "
-          "multiple of this, in s of simulated time (0: never). "
+          "multiple of this, in simulated time (0: never). "
           "`coshell scene.prm --restart FILE` resumes from one. SIGINT and "
           "SIGTERM write one at the end of the current step and stop with "
-          "status 3.");
+          "status 3. Unit: time (s).");
       prm.declare_entry(
           "Steps between history rows", "1", Patterns::Integer(1),
           "Dynamic stages: time_history.csv gets the rows of the steps whose "
           "number (the step column, counted over all stages) is a multiple "
           "of n, of each stage's last step and of the step where an "
-          "interactive run stops (a step count, dimensionless). Their "
+          "interactive run stops. Their "
           "strain energy, largest strains and quantities of interest are "
           "computed for those steps only; the work and the dissipation are "
           "still summed over every step, so each row's energy balance holds "
           "as with 1. A haptic loop that reads only the interactive replies "
-          "saves those passes over the elements (about 7 % of a linearized "
-          "step of the IOL push). Peaks between rows are not seen, and a "
-          "run that fails keeps the rows up to its last multiple of n.");
+          "saves those passes over the elements, a noticeable part of a "
+          "linearized step (doc/performance.md). Peaks between rows are "
+          "not seen, and a run that fails keeps the rows up to its last "
+          "multiple of n. Unit: dimensionless (a step count).");
       prm.leave_subsection();
     }
   } // namespace
@@ -1109,10 +1112,10 @@ namespace coshell::driver
   {
     // A linearized step's system is the step itself, and its factors
     // serve. Newton judges its last iterate without a tangent when it
-    // expects convergence: its factors are then an iterate behind, which
-    // changed the plate-on-plane's slope by 1.2 %, and hold projected
-    // pair Hessians, another 0.03 % there. So the state reached gets its
-    // exact tangent (the couplings are assembled with it).
+    // expects convergence: its factors are then an iterate behind and
+    // hold projected pair Hessians, and both move the slope it reports
+    // (doc/validation.md). So the state reached gets its exact tangent
+    // (the couplings are assembled with it).
     Vector<double> response;
     contact.set_exact_tangent(true);
     try

@@ -97,18 +97,18 @@ namespace coshell::driver
                         "static stage after a dynamic one leaves the shell "
                         "at rest (its equilibrium has no velocities).");
       prm.declare_entry("Duration", "1", Patterns::Anything(),
-                        "Length of the stage, s (in statics a pseudo-time "
+                        "Length of the stage (in statics a pseudo-time "
                         "that drives the load factor and the motions); > 0. "
                         "A number or an expression of pi and the scene's "
                         "Constants (e.g. 'push_time - rod_out_time'), so "
                         "that a stage follows the design values it ends "
-                        "with.");
+                        "with. Unit: time (s).");
       prm.declare_entry("Load factor", "", Patterns::Anything(),
                         "Dimensionless factor on every load of subsection "
                         "Loads, a muparser expression of the time t (s, "
                         "counted from the start of the scene) and the stage "
                         "fraction s in [0, 1]. Empty: s in statics (a "
-                        "ramp), 1 in dynamics.");
+                        "ramp), 1 in dynamics. Unit: dimensionless.");
       prm.declare_entry("Motions", "all", Patterns::Anything(),
                         "The prescribed motions active in this stage: all, "
                         "none, or their numbers ('1, 3'). The others' "
