@@ -5,9 +5,9 @@ two updates of the simulation?
 A device drives the plunger of the IOL injection (prm/iol/injection.prm,
 default lens, the plunger on its `Input direction` as in the README)
 after the fold: s(t) = v (t - 1.3 s) + A sin(2 pi f (t - 1.3 s)), a push
-with a tremor. The reference session sends the device's position every
-millisecond, so its step at each millisecond gives the force there. A
-multirate session sends it every --update ms only; between two of its
+with a tremor. The reference run of the interactive protocol sends the
+device's position every millisecond, so its step at each millisecond
+gives the force there. A multirate run sends it every --update ms only; between two of its
 step lines a 1 kHz loop renders either the last force F (hold) or the
 local model F + k (s_device - s) with the step's input s and slope k
 (Cavusoglu and Tendick, ICRA 2000), or that model applied only to the
@@ -15,7 +15,7 @@ device's deviation from the input's last rate, F + k (s_device - s -
 r (t - t_n)) with r the rate between the last two updates. Each is
 compared with the reference at every millisecond. The simulation is taken to keep up with
 the device (sim time = device time); how far it does not is the haptic
-rate of doc/performance.md.
+rate of doc/performance/iol.md.
 
 Writes doc/performance/haptic_local_model.csv (error per update
 interval) and haptic_local_model.png (forces of one interval, errors of

@@ -7,9 +7,8 @@ would run (one linear solve per step: `linearized implicit euler`), with
 the barrier and with the penalty, without and with its step filter; all
 with the scene's friction, the linearized modes with a 0.01 mm floor on
 its smoothing length. Each step's matrix is factorized (CHOLMOD): kept
-factors, which this script once asked for, measured no faster here. The
-fold is run once, in the scene's
-mode, and written as a checkpoint; each mode restarts from it for --push
+factors measure no faster on this bed. The fold is run once, in the
+scene's mode, and written as a checkpoint; each mode restarts from it for --push
 seconds at a fixed step. Per mode: steps per second, the per-step split
 (assembly with contact, linear solver, the rest), contact detection per
 step, the smallest gap (negative: penetration), the largest strains,
@@ -21,7 +20,8 @@ stayed below twice that mode's: a lens that blew up, or a plunger held
 back while the scene stood still, is reported as such, not as a rate.
 The linearized penalty runs at --step and, since it breaks the lens
 there, at 0.5 ms too; at 0.5 ms also with the history thinned, and with
-the seed paper's tangent R K R^T instead of the scene's symmetric one. The penalty modes restart from a fold made with the penalty (the scene's
+the seed paper's tangent R K R^T instead of the scene's symmetric one.
+The penalty modes restart from a fold made with the penalty (the scene's
 mode otherwise): the barrier's fold holds the lens's layers apart at the
 barrier's gaps, and a penalty, which acts only on penetration, drops
 them at once. Writes
@@ -56,13 +56,12 @@ QUIET = ["Parallel/Threads=1", "Output/Write VTU=false",
          "Stage 3/Analysis type=none", "Stage 4/Analysis type=none"]
 # The scene's friction in one linear solve per step needs a floor on its
 # smoothing length: with IPC's v dt alone (0.1 mm/s x 1 ms = 1e-4 mm) the
-# linearized lens blew up (membrane strain 3.3; doc/performance.md).
+# linearized lens blows up (membrane strain 3.3; doc/performance/iol.md).
 FLOOR = ["Contact/Stiction displacement=0.01"]
-# No kept factors (Linear solver/Reuse factorization): until 2026-11-27
-# they were UMFPACK's only and the request did nothing with the scene's
-# CHOLMOD; since then they are CHOLMOD's too, and on this bed GMRES with
-# them cost as much as factorizing 1 890 DoFs afresh (doc/performance.md,
-# "Cells scattered through a map").
+# No kept factors (Linear solver/Reuse factorization): on this bed GMRES
+# preconditioned with CHOLMOD's kept factors costs as much as factorizing
+# the 1 890 DoFs afresh (doc/performance/iol.md, "Why tuning cannot close
+# the gap").
 # The penalty (E / h) with a step filter of 0.5: the fold's Newton steps
 # jam at 0.9 (at t = 0.6 s the wings cannot press the lens within a tenth
 # of its half thickness), so the penalty modes share 0.5.

@@ -2,8 +2,8 @@
 """The haptic rate against the lens's size: haptic_rate.py's mode with
 the scene's tangent (linearized implicit Euler, penalty contact with its
 step filter, 0.5 ms steps, history every 20th step, one thread; the
-paper's tangent, haptic_rate.py's last mode, ran 1.10x to 1.16x faster
-on both lenses in the thirty-third session) on the coarse
+paper's tangent, haptic_rate.py's last mode, runs 1.10x to 1.16x faster
+on both lenses, measured by hand) on the coarse
 lens of the ctests (203 triangles) and the default lens (480), in
 alternating pairs, so that the machine's load, which moves within minutes
 on a shared machine, falls on both alike. Each lens is folded once with

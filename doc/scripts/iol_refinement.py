@@ -17,7 +17,7 @@ iol_refinement.png, stamped with machine and commit.
 With --whole the runs are the whole scene instead: the fold, the push
 until the plunger reaches the nozzle's tip (where the folded optic
 passes the nozzle and the force peaks), the deployment in the bag and
-the settling (stage 4, since 2026-11-29); the rows add the optic's
+the settling (stage 4); the rows add the optic's
 decentration, tilt and shape deviation at rest (the Region poses'
 quantities at the end), and their real-time factor is that of stages 1
 to 3. Files iol_refinement_whole.csv and .png, whose fourth panel is the
