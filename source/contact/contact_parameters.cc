@@ -22,38 +22,42 @@ namespace coshell::contact
       prm.declare_entry("Activation distance", "0", Patterns::Double(0),
                         "Barrier: the gap (distance minus half the shell "
                         "thickness and the obstacle offset) below which the "
-                        "barrier acts, length units; the shell settles within "
-                        "it, so it bounds the geometric error of contact. 0: "
-                        "a tenth of the shell thickness.");
+                        "barrier acts; the shell settles within it, so it "
+                        "bounds the geometric error of contact. 0: a tenth of "
+                        "the shell thickness. Unit: length (mm in the IOL "
+                        "scenes).");
       prm.declare_entry(
           "Barrier stiffness", "0", Patterns::Double(0),
-          "Barrier: kappa in the energy kappa * area * b(gap), N/mm^3 in "
-          "mm-N units (pressure per length). 0: kappa = E / (h b''(d/2)), so "
+          "Barrier: kappa in the energy kappa * area * b(gap), b(g) = "
+          "-(g - d)^2 ln(g / d) a squared length, so kappa is a pressure "
+          "per length. 0: kappa = E / (h b''(d/2)), so "
           "that the barrier at half the activation distance d is as stiff as "
           "the shell across its half thickness. Doubled after a step whose "
-          "smallest gap falls below Stiffening gap ratio * d.");
+          "smallest gap falls below Stiffening gap ratio * d. Unit: "
+          "force/length^3 (N/mm^3 in mm-N-s scenes).");
       prm.declare_entry(
           "Barrier stiffness scale", "material",
           Patterns::Selection("material|load"),
-          "Barrier, with Barrier stiffness = 0: what sets kappa (a choice, no "
-          "unit). material: E / (h b''(d/2)), above, for contact pressures "
+          "Barrier, with Barrier stiffness = 0: what sets kappa. material: E / (h b''(d/2)), above, for contact pressures "
           "of the order of the shell's own stiffness (folding, pushing). "
           "load: q / |b'(d/2)|, q the mean dead load per area of the shell "
-          "(N/mm^2: the magnitudes of the vertex forces of gravity, pressure, "
+          "(force/length^2: the magnitudes of the vertex forces of gravity, pressure, "
           "point and edge forces, over the shell's area), so that the barrier "
           "carries the scene's own load at half the activation distance: for "
           "a shell resting on an obstacle or on itself under a light load, "
           "which the material scale would float at the barrier's edge, where "
           "its stiffness vanishes. Both are doubled as above.");
       prm.declare_entry("Stiffening gap ratio", "1e-3", Patterns::Double(0, 1),
-                        "Barrier: see Barrier stiffness (dimensionless).");
+                        "Barrier: see Barrier stiffness. Unit: "
+                        "dimensionless (a fraction of the activation "
+                        "distance).");
       prm.declare_entry("Penalty stiffness", "0", Patterns::Double(0),
-                        "Penalty: contact pressure per penetration, N/mm^3 in "
-                        "mm-N units. 0: E / h.");
+                        "Penalty: contact pressure per penetration. 0: E / h. "
+                        "Unit: force/length^3 (N/mm^3 in mm-N-s scenes).");
       prm.declare_entry("Penalty smoothing", "0", Patterns::Double(0),
                         "Penalty: the penetration over which the penalty "
-                        "stiffness ramps up from zero (C2 start), length "
-                        "units. 0: h / 100.");
+                        "stiffness ramps up from zero (C2 start). 0: h / 100. "
+                        "Unit: length (mm in the IOL scenes).");
       prm.declare_entry(
           "Penalty step filter", "0", Patterns::Double(0, 1),
           "Penalty: 0 (the default) lets a step carry a vertex through an "
@@ -63,7 +67,7 @@ namespace coshell::contact
           "continuous collision detection, as the barrier's are, to keep "
           "each pair f times its offset (half the thicknesses) apart, so a "
           "step may press into the half thickness but not through it "
-          "(dimensionless, 0 <= f < 1).");
+          "(0 <= f < 1). Unit: dimensionless (a fraction of the offset).");
     }
 
     /// How the pairs' Hessians enter the tangent.
@@ -105,13 +109,14 @@ namespace coshell::contact
           "discontinuous where a vertex passes a concave edge.");
       prm.declare_entry(
           "Stiction velocity", "1e-3", Patterns::Double(0),
-          "Friction: the tangential speed, length units / s, below which "
+          "Friction: the tangential speed below which "
           "Coulomb friction is smoothed to a viscous law (IPC's epsilon_v): "
           "a sticking contact creeps at a fraction of it. In statics the "
-          "pseudo-time of a step stands for its duration.");
+          "pseudo-time of a step stands for its duration. Unit: "
+          "length/time (mm/s in the IOL scenes).");
       prm.declare_entry(
           "Stiction displacement", "0", Patterns::Double(0),
-          "Friction: the least tangential slip, length units, over which "
+          "Friction: the least tangential slip over which "
           "friction is smoothed in a step, whatever the step's duration: "
           "the smoothing length is the larger of this and Stiction velocity "
           "times the step. With 0 (the default) it is IPC's v dt alone, "
@@ -119,9 +124,8 @@ namespace coshell::contact
           "where Newton already struggles. A floor weakens friction on "
           "slow slip: a vertex slipping at speed v is resisted by about "
           "v dt / (this) of Coulomb's force while v dt is below it, so "
-          "the force depends on the time step (on the IOL push at 0.01 "
-          "mm, the coarse lens's plunger force with Newton fell 20 % from 1 "
-          "ms to 0.25 ms steps).");
+          "the force depends on the time step (doc/validation.md, "
+          "doc/performance.md). Unit: length (mm in the IOL scenes).");
       prm.declare_entry(
           "Edge-edge pairs", "true", Patterns::Bool(),
           "Also keep shell edges from obstacle edges (and, with Self "
@@ -144,15 +148,16 @@ namespace coshell::contact
       prm.declare_entry("Self contact friction coefficient", "0",
                         Patterns::Double(),
                         "Coulomb friction coefficient mu of the shell against "
-                        "itself (dimensionless, >= 0; 0: frictionless, and "
-                        "no cost).");
+                        "itself (>= 0; 0: frictionless, and no cost). Unit: "
+                        "dimensionless.");
       prm.declare_entry(
           "Self contact exclusion", "2", Patterns::Double(1),
           "Self contact ignores a vertex-triangle pair of the same connected "
           "piece of shell whose distance in the reference configuration is "
-          "below this multiple of the distance it must keep (dimensionless, "
-          ">= 1): neighbours on a thick shell are closer than its thickness "
-          "and are held apart by the elements, not by contact.");
+          "below this multiple of the distance it must keep (>= 1): "
+          "neighbours on a thick shell are closer than its thickness "
+          "and are held apart by the elements, not by contact. Unit: "
+          "dimensionless.");
     }
   } // namespace
 

@@ -363,19 +363,21 @@ namespace coshell::contact
       prm.declare_entry("Gmsh parameters", "", Patterns::Anything(),
                         "Constants set when a .geo Mesh file is meshed, as "
                         "'name = value' entries separated by ',' (see "
-                        "Mesh/Gmsh parameters).");
+                        "Mesh/Gmsh parameters). Unit: each constant's own, "
+                        "as the .geo file documents it.");
       prm.declare_entry("Name", "obstacle " + std::to_string(k),
                         Patterns::Anything(),
                         "Name in messages and in contact_forces.csv.");
       model::RigidMotion::declare_entries(prm);
       prm.declare_entry(
           "Input direction", "", Patterns::Anything(),
-          "'a, b, c' (dimensionless; numbers or expressions of the "
+          "'a, b, c' (numbers or expressions of the "
           "Constants): with --interactive, a protocol line "
           "'t s' moves this obstacle by s times this vector (s in length "
           "units) at time t (s), linearly from the present, on top of its "
           "Translation and Rotation: a haptic device drives it. Empty: the "
-          "obstacle takes no input.");
+          "obstacle takes no input. Unit: dimensionless (the protocol's s "
+          "carries the length).");
       prm.declare_entry(
           "Force file", "", Patterns::Anything(),
           "A CSV file written to the output directory, one row per step "
@@ -389,20 +391,20 @@ namespace coshell::contact
           "not one of the run's own files. A restart appends to the "
           "earlier run's file: keep its Force direction. Empty: none.");
       prm.declare_entry("Force direction", "", Patterns::Anything(),
-                        "'a, b, c' (dimensionless, normalized; each a "
+                        "'a, b, c' (normalized; each a "
                         "number or an expression of the Constants): the "
                         "direction Force file measures along; required "
-                        "with it, refused without it.");
+                        "with it, refused without it. Unit: dimensionless.");
       prm.declare_entry("Friction coefficient", "0", Patterns::Anything(),
                         "Coulomb friction coefficient mu against the shell "
-                        "(dimensionless, >= 0): a number, or an expression "
+                        "(>= 0): a number, or an expression "
                         "of t (s) and the Constants, e.g. '0.5 * (t < 1.3)' "
                         "for forceps that let go at 1.3 s (taken at each "
-                        "step's end time).");
+                        "step's end time). Unit: dimensionless.");
       prm.declare_entry("Offset", "0", Patterns::Double(),
                         "Distance kept between the obstacle and the shell's "
-                        "surface, added to half the shell thickness (length "
-                        "units, >= 0).");
+                        "surface, added to half the shell thickness (>= 0). "
+                        "Unit: length (mm in the IOL scenes).");
       prm.leave_subsection();
     }
   }

@@ -217,15 +217,17 @@ namespace coshell::io
                       "an expression of pi and the constants before it "
                       "(e.g. 'push_time = rod_out_time + 21.9 / "
                       "plunger_speed'), so that derived times follow the "
-                      "design values they come from.");
+                      "design values they come from. Unit: each constant's "
+                      "own, as the prm's header states it.");
     prm.declare_entry(
         "Changes", "", Patterns::Anything(),
         "'name = value' entries, as in Values, that replace the values of "
         "constants of Values where they stand, so that the constants "
-        "derived from them follow (in the same units as in Values). Meant "
+        "derived from them follow. Meant "
         "for the command line: --set \"Constants/Changes=plunger_speed = "
         "1.5\" changes one design value without restating the others. A "
-        "name that is not a constant of Values is refused.");
+        "name that is not a constant of Values is refused. Unit: each "
+        "constant's own, as in Values.");
     prm.declare_entry("Positive", "", Patterns::Anything(),
                       "Names of constants (separated by ',') that must be "
                       "> 0: a scene that needs a forward speed or a "

@@ -41,7 +41,7 @@ namespace coshell::io
         "(N, M, material_id, thickness) become values at the merged "
         "vertices, taken from one of the triangles around each. Obstacles "
         "of contact scenes are VTU files either way, and a restart's "
-        ".xdmf lists only its own steps (dimensionless choice).");
+        ".xdmf lists only its own steps.");
     prm.declare_entry(
         "Vertex table", "false", Patterns::Bool(),
         "Selects whether each field output also writes NAME.vertices.csv: "
@@ -52,8 +52,8 @@ namespace coshell::io
     prm.declare_entry("Steps between outputs", "1", Patterns::Integer(0),
                       "Nonlinear runs: write every n-th converged load step "
                       "and, in dynamic stages, each stage's last step (0: "
-                      "only the run's last one); a step count "
-                      "(dimensionless).");
+                      "only the run's last one). Unit: dimensionless (a "
+                      "step count).");
     prm.leave_subsection();
   }
 

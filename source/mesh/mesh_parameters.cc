@@ -34,45 +34,46 @@ namespace coshell::mesh
                       "Constants set when a .geo Gmsh file is meshed, as "
                       "'name = value' entries separated by ',' (gmsh "
                       "-setnumber), overriding the file's DefineConstant "
-                      "defaults, e.g. 'haptic_width = 0.5'; units as the "
-                      ".geo file documents them.");
+                      "defaults, e.g. 'haptic_width = 0.5'. Unit: each "
+                      "constant's own, as the .geo file documents it.");
     prm.declare_entry("Triangle pattern", "crossed",
                       Patterns::Selection("same-diagonal|alternating|crossed"),
                       "Selects how a generated rectangle splits each "
                       "square into triangles (same-diagonal, alternating "
                       "or crossed).");
     prm.declare_entry("Length x", "1", Patterns::Double(0),
-                      "Plate length along x, in length units of the scene "
-                      "(m, mm, ...); > 0 for Source = rectangle.");
+                      "Plate length along x; > 0 for Source = rectangle. "
+                      "Unit: length (the scene's: m, mm, ...).");
     prm.declare_entry("Length y", "1", Patterns::Double(0),
-                      "Plate length along y, in length units of the scene "
-                      "(m, mm, ...); > 0 for Source = rectangle.");
+                      "Plate length along y; > 0 for Source = rectangle. "
+                      "Unit: length (the scene's: m, mm, ...).");
     prm.declare_entry("Subdivisions x", "4", Patterns::Integer(1),
-                      "Number of squares along x at refinement level 0 "
-                      "(dimensionless).");
+                      "Number of squares along x at refinement level 0. "
+                      "Unit: dimensionless (a count).");
     prm.declare_entry("Subdivisions y", "4", Patterns::Integer(1),
-                      "Number of squares along y at refinement level 0 "
-                      "(dimensionless).");
+                      "Number of squares along y at refinement level 0. "
+                      "Unit: dimensionless (a count).");
     prm.declare_entry("Refinement levels", "0",
                       Patterns::List(Patterns::Integer(0, 12), 1),
-                      "List of refinement levels to run (each "
-                      "dimensionless); more than one makes a refinement "
-                      "study that writes convergence.csv. Each level halves "
-                      "h.");
+                      "List of refinement levels to run; more than one "
+                      "makes a refinement study that writes "
+                      "convergence.csv. Each level halves h. Unit: "
+                      "dimensionless (level numbers).");
     prm.declare_entry("Normal reference", "0, 0, 1",
                       Patterns::List(Patterns::Double(), 3, 3),
-                      "Direction vector x, y, z (dimensionless; only its "
+                      "Direction vector x, y, z (only its "
                       "direction matters). Cell normals are made consistent "
                       "across edges and each connected patch is turned to "
                       "face this direction; pressure acts along these "
-                      "normals.");
+                      "normals. Unit: dimensionless.");
     prm.declare_entry("Vertex transformation", "x; y; z", Patterns::Anything(),
                       "New position of every mesh vertex as three "
-                      "expressions of its position x, y, z separated by ';' "
-                      "(length units), applied after the mesh is built or "
+                      "expressions of its position x, y, z separated by "
+                      "';', applied after the mesh is built or "
                       "refined: an imperfection, a curved mid-surface (e.g. "
                       "an optic's sag), a change of frame. The result is "
-                      "the stress-free reference configuration.");
+                      "the stress-free reference configuration. Unit: "
+                      "length (the scene's: m, mm, ...).");
     prm.leave_subsection();
   }
 

@@ -198,14 +198,14 @@ namespace coshell::model
         "the in-plane edge normal); simply supported soft (u = 0); symmetry "
         "x|y|z (mirror plane with that normal); free; fixed <components> "
         "(e.g. 'fixed ux uz rx'). Example: 0: clamped, 1: symmetry x. "
-        "Boundary ids are dimensionless integers; the conditions hold the "
-        "chosen displacements and rotations at zero, so no unit applies.");
+        "The conditions hold the chosen displacements and rotations at "
+        "zero. Unit: dimensionless (boundary ids).");
     prm.declare_entry(
         "Point conditions", "", Patterns::Anything(),
         "Conditions at the vertex nearest a point, as 'x y z : condition' "
-        "entries separated by ';', x y z in length units of the scene (m, "
-        "mm, ...) (e.g. '0 0 10 : fixed uz' to stop a rigid translation of "
-        "a self-equilibrated model).");
+        "entries separated by ';' (e.g. '0 0 10 : fixed uz' to stop a "
+        "rigid translation of a self-equilibrated model). Unit: length for "
+        "x y z (the scene's: m, mm, ...).");
     prm.leave_subsection();
   }
 

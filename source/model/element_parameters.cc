@@ -16,23 +16,27 @@ namespace coshell::model
     {
       prm.enter_subsection("Material");
       prm.declare_entry("Young's modulus", "1", Patterns::Double(),
-                        "Young's modulus E, force per area (Pa = N/m^2, or "
-                        "MPa = N/mm^2 in mm-N-s-tonne scenes); > 0.");
+                        "Young's modulus E; > 0. Unit: force/length^2 (Pa "
+                        "= N/m^2 in SI, MPa = N/mm^2 in mm-N-s-tonne "
+                        "scenes).");
       prm.declare_entry("Poisson's ratio", "0.3", Patterns::Double(),
-                        "Poisson's ratio nu (dimensionless), in (-1, 0.5).");
+                        "Poisson's ratio nu, in (-1, 0.5). Unit: "
+                        "dimensionless.");
       prm.declare_entry(
           "Thickness", "0.01", Patterns::Anything(),
-          "Shell thickness h, in length units of the scene (m, mm, ...); > 0. "
+          "Shell thickness h; > 0. "
           "A number, or a muparser expression of x, y, z (the reference "
           "centroid of each triangle) and region (its material id, the gmsh "
           "physical surface), constant over each triangle, e.g. "
-          "if(region == 1, 0.8 - 0.5 * (x^2 + y^2) / 9, 0.45).");
+          "if(region == 1, 0.8 - 0.5 * (x^2 + y^2) / 9, 0.45). Unit: length "
+          "(the scene's: m, mm, ...).");
       prm.declare_entry(
           "Density", "0", Patterns::Anything(),
-          "Mass per unit volume, >= 0 (kg/m^3 in SI, or tonne/mm^3 in "
-          "mm-N-s-tonne scenes: steel 7850 kg/m^3 = 7.85e-9 t/mm^3); used by "
-          "gravity loads and inertia. A number, or an expression of x, y, z "
-          "and region as for Thickness.");
+          "Mass per unit volume, >= 0 (steel: 7850 kg/m^3 = 7.85e-9 "
+          "t/mm^3); used by gravity loads and inertia. A number, or an "
+          "expression of x, y, z and region as for Thickness. Unit: "
+          "mass/length^3 (kg/m^3 in SI, tonne/mm^3 in mm-N-s-tonne "
+          "scenes).");
       prm.leave_subsection();
     }
 
@@ -61,13 +65,13 @@ namespace coshell::model
                         "edge AB = vertex 0 -> 1); or off.");
       prm.declare_entry("Drilling stiffness factor", "1e-3",
                         Patterns::Double(0),
-                        "Dimensionless penalty tying each nodal drilling "
+                        "Penalty tying each nodal drilling "
                         "rotation to the membrane's in-plane rotation, "
                         "k = factor * E h A / 3 (see doc/theory.md). Used by "
-                        "the cst membrane only.");
+                        "the cst membrane only. Unit: dimensionless.");
       prm.declare_entry(
           "ANDES curvature scaling", "10", Patterns::Double(0),
-          "Dimensionless constant c of the andes membrane's higher-order "
+          "Constant c of the andes membrane's higher-order "
           "stiffness on a curved mesh: each triangle's K_h is multiplied by "
           "1 / (1 + c l^2 phi^2 / h^2), l^2 the mean squared edge length, h "
           "the thickness and phi the largest angle between the triangle's "
@@ -75,13 +79,13 @@ namespace coshell::model
           "surface the drilling terms charge part of the bending rotation at "
           "membrane stiffness and lock (91 % too stiff on the 4 x 4 pinched "
           "hemisphere); flat meshes keep factor 1. 0: Felippa's optimal "
-          "element everywhere (see doc/theory.md).");
+          "element everywhere (see doc/theory.md). Unit: dimensionless.");
       prm.declare_entry(
           "ANDES basic drilling scaling", "0.1", Patterns::Double(0),
-          "Dimensionless constant c_b of the same form for the Allman drilling "
+          "Constant c_b of the same form for the Allman drilling "
           "weight alpha_b = 3/2 of the andes membrane's basic stiffness: "
           "alpha_b / (1 + c_b l^2 phi^2 / h^2) per triangle. 0: alpha_b = 3/2 "
-          "everywhere (see doc/theory.md).");
+          "everywhere (see doc/theory.md). Unit: dimensionless.");
       prm.leave_subsection();
     }
   } // namespace

@@ -55,34 +55,37 @@ namespace coshell::model
                       "vertex). Used in dynamics only (Material/Density "
                       "gives rho).");
     prm.declare_entry("Rotary inertia factor", "1", Patterns::Double(0),
-                      "Dimensionless factor on the nodal rotary inertia "
+                      "Factor on the nodal rotary inertia "
                       "rho h^3/12 * A/3 (lumped, the same about every axis). "
                       "Larger values raise the highest (drilling and "
                       "bending) frequencies' periods, allowing larger "
                       "explicit-like steps, at the cost of accuracy in "
-                      "fast rotations; must be > 0.");
+                      "fast rotations; must be > 0. Unit: dimensionless.");
     prm.declare_entry("Rayleigh mass coefficient", "0", Patterns::Double(0),
-                      "alpha of the damping C = alpha M + beta K, in 1/s.");
+                      "alpha of the damping C = alpha M + beta K. Unit: "
+                      "1/time (1/s).");
     prm.declare_entry("Rayleigh stiffness coefficient", "0",
                       Patterns::Double(0),
-                      "beta of the damping C = alpha M + beta K, in s (K: the "
+                      "beta of the damping C = alpha M + beta K (K: the "
                       "linear stiffness of the current triangles, which "
-                      "does not damp rigid motions).");
+                      "does not damp rigid motions). Unit: time (s).");
     prm.declare_entry("Normal drag", "0", Patterns::Double(0),
                       "Viscous drag of the surrounding medium against the "
-                      "normal velocity, force per area per velocity (e.g. "
-                      "N s/m^3, or N s/mm^3 in mm-N-s scenes).");
+                      "normal velocity: force per area per velocity. Unit: "
+                      "force*time/length^3 (N s/m^3 in SI, N s/mm^3 in "
+                      "mm-N-s scenes).");
     prm.declare_entry("Tangential drag", "0", Patterns::Double(0),
-                      "Viscous drag against the in-plane velocity, force "
-                      "per area per velocity.");
+                      "Viscous drag against the in-plane velocity: force "
+                      "per area per velocity. Unit: force*time/length^3 (N "
+                      "s/m^3 in SI, N s/mm^3 in mm-N-s scenes).");
     prm.declare_entry("Initial velocity", "0; 0; 0", Patterns::Anything(),
                       "Velocity at the start of the scene, three muparser "
                       "expressions of the position x, y, z separated by "
-                      "';', in length/s.");
+                      "';'. Unit: length/time (mm/s in the IOL scenes).");
     prm.declare_entry("Initial angular velocity", "0; 0; 0",
                       Patterns::Anything(),
                       "Angular velocity of the nodal triads at the start, "
-                      "three expressions of x, y, z, in rad/s.");
+                      "three expressions of x, y, z. Unit: rad/s.");
     prm.leave_subsection();
   }
 

@@ -129,8 +129,8 @@ namespace coshell::model
     prm.enter_subsection("Loads");
     prm.declare_entry("Pressure", "0", Patterns::Double(),
                       "Uniform pressure along the oriented cell normal, "
-                      "force per area (Pa = N/m^2, or MPa = N/mm^2 in "
-                      "mm-N-s-tonne scenes), lumped to the vertices.");
+                      "lumped to the vertices. Unit: force/length^2 (Pa = "
+                      "N/m^2 in SI, MPa = N/mm^2 in mm-N-s-tonne scenes).");
     prm.declare_entry("Pressure type", "dead",
                       Patterns::Selection("dead|follower"),
                       "Selects the pressure direction. "
@@ -140,29 +140,29 @@ namespace coshell::model
                       "linear runs).");
     prm.declare_entry("Gravity", "0, 0, 0",
                       Patterns::List(Patterns::Double(), 3, 3),
-                      "Acceleration vector gx, gy, gz, length/time^2 "
-                      "(m/s^2, or mm/s^2 in mm-N-s-tonne scenes: 9810 for "
-                      "g); the load is density * thickness * area * g, "
-                      "lumped to the vertices.");
+                      "Acceleration vector gx, gy, gz; the load is "
+                      "density * thickness * area * g, lumped to the "
+                      "vertices. Unit: length/time^2 (m/s^2 in SI, mm/s^2 "
+                      "in mm-N-s-tonne scenes: 9810 for g).");
     prm.declare_entry("Point forces", "", Patterns::Anything(),
                       "Forces at the vertex nearest each point, as "
-                      "'x y z : fx fy fz' entries separated by ';'; x y z "
-                      "in length units of the scene (m, mm, ...), fx fy fz "
-                      "in force units (N).");
+                      "'x y z : fx fy fz' entries separated by ';'. Unit: "
+                      "length for x y z (the scene's: m, mm, ...), force "
+                      "for fx fy fz (N).");
     prm.declare_entry("Point moments", "", Patterns::Anything(),
                       "Moments at the vertex nearest each point, as "
-                      "'x y z : mx my mz' entries separated by ';'; x y z "
-                      "in length units of the scene (m, mm, ...), mx my mz "
-                      "force*length (N m, or N mm in mm-N-s-tonne "
-                      "scenes).");
+                      "'x y z : mx my mz' entries separated by ';'. Unit: "
+                      "length for x y z (the scene's: m, mm, ...), "
+                      "force*length for mx my mz (N m in SI, N mm in "
+                      "mm-N-s-tonne scenes).");
     prm.declare_entry("Edge forces", "", Patterns::Anything(),
                       "Forces spread uniformly along the boundary edges of "
                       "one boundary id (a gmsh physical curve), as "
                       "'id : fx fy fz' entries separated by ';'; fx fy fz "
-                      "is the resultant in force units (N), each edge "
-                      "taking its share by length.");
+                      "is the resultant, each edge taking its share by "
+                      "length. Unit: force for fx fy fz (N).");
     prm.declare_entry("Load factor", "1", Patterns::Double(),
-                      "Multiplies every load above (dimensionless).");
+                      "Multiplies every load above. Unit: dimensionless.");
     prm.leave_subsection();
   }
 

@@ -92,8 +92,8 @@ namespace coshell::model
       prm.declare_entry("Where", "", Patterns::Anything(),
                         "The vertices moved: 'boundary N' (every vertex of "
                         "boundary id N) or 'point x y z' (the vertex nearest "
-                        "that point, coordinates in length units); empty: "
-                        "this motion is not defined.");
+                        "that point); empty: this motion is not defined. "
+                        "Unit: length for x y z (the scene's: m, mm, ...).");
       prm.declare_entry("Components", "ux uy uz rx ry rz", Patterns::Anything(),
                         "Prescribed components, space separated: any of ux "
                         "uy uz, and rx ry rz all together or none (the "

@@ -42,22 +42,22 @@ namespace coshell::model
     prm.declare_entry("Point values", "", Patterns::Anything(),
                       "Nodal values at the vertex nearest a point, as "
                       "'name: x y z component' entries separated by ';'; "
-                      "x y z in length units of the scene (m, mm, ...); "
-                      "component is ux, uy, uz, rx, ry or rz. The value is "
-                      "in the unit of its component: length for ux, uy, "
-                      "uz, rad for rx, ry, rz.");
+                      "component is ux, uy, uz, rx, ry or rz. Unit: length "
+                      "for x y z (the scene's: m, mm, ...); the value is in "
+                      "its component's unit, length for ux, uy, uz, rad for "
+                      "rx, ry, rz.");
     prm.declare_entry("Maximum values", "", Patterns::Anything(),
                       "Largest-magnitude nodal value of a component over the "
                       "mesh (sign kept), as 'name: component' entries "
-                      "separated by ';'. The value is in the unit of its "
-                      "component: length for ux, uy, uz, rad for rx, ry, "
-                      "rz.");
+                      "separated by ';'. Unit: the value is in its "
+                      "component's unit, length for ux, uy, uz, rad for "
+                      "rx, ry, rz.");
     prm.declare_entry(
         "Region poses", "", Patterns::Anything(),
         "Where a region of the shell (a material id: the optic of a lens) "
         "sits against an axis (a capsular bag's), as 'name: region cx cy "
         "cz ax ay az' entries separated by ';': the axis through the "
-        "centre (cx, cy, cz), in length units, along (ax, ay, az); each "
+        "centre (cx, cy, cz) along (ax, ay, az); each "
         "number may be an expression of the scene's Constants (no blanks "
         "inside). Gives name_decentration, the distance of the region's "
         "vertex centroid from the axis (length), name_axial, its position "
@@ -66,23 +66,24 @@ namespace coshell::model
         "region's vertices by least squares (degrees, 0 to 90), and "
         "name_shape_deviation, the largest distance of a vertex of the "
         "region from the rigid motion of its reference shape that fits "
-        "it best in least squares (length: how far the region is "
-        "deformed).");
+        "it best in least squares (how far the region is deformed). "
+        "Unit: length for cx cy cz (the scene's: m, mm, ...), "
+        "dimensionless for ax ay az.");
     prm.declare_entry("Reference values", "",
                       Patterns::Map(Patterns::Anything(), Patterns::Double()),
                       "Reference value per quantity name ('name: value, "
-                      "...'), each in the unit of that quantity (length for "
-                      "ux, uy, uz, rad for rx, ry, rz); summary.json then "
-                      "reports the relative error (dimensionless).");
+                      "...'); summary.json then reports the relative "
+                      "error. Unit: each value in its quantity's unit "
+                      "(length for ux, uy, uz, rad for rx, ry, rz).");
     prm.declare_entry("Reference curves", "", Patterns::Anything(),
                       "Reference load-displacement points for nonlinear "
                       "runs, as 'name: factor value, factor value, ...' "
-                      "entries separated by ';'; factor is the load factor "
-                      "(dimensionless), value is in the unit of the "
-                      "quantity (length for ux, uy, uz, rad for rx, ry, "
-                      "rz). Load control stops exactly at these load "
-                      "factors; the points are written to "
-                      "reference_points.csv and plotted.");
+                      "entries separated by ';'. Load control stops "
+                      "exactly at these load factors; the points are "
+                      "written to reference_points.csv and plotted. Unit: "
+                      "dimensionless for factor (the load factor); value "
+                      "in its quantity's unit (length for ux, uy, uz, rad "
+                      "for rx, ry, rz).");
     prm.declare_entry("Largest strains", "false", Patterns::Bool(),
                       "Dynamic runs: also write, per step, the largest "
                       "principal membrane strain and the largest bending "

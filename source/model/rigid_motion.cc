@@ -25,18 +25,19 @@ namespace coshell::model
   {
     prm.declare_entry("Translation", "0; 0; 0", Patterns::Anything(),
                       "d(t): three muparser expressions of the time t (s) "
-                      "separated by ';', in length units.");
+                      "separated by ';'. Unit: length (mm in the IOL "
+                      "scenes).");
     prm.declare_entry("Rotation axis", "0, 0, 1", Patterns::Anything(),
-                      "Axis of the rigid rotation (dimensionless, "
-                      "normalized here; each component a number or an "
-                      "expression of the scene's Constants).");
+                      "Axis of the rigid rotation (normalized here; each "
+                      "component a number or an expression of the scene's "
+                      "Constants). Unit: dimensionless.");
     prm.declare_entry("Rotation angle", "0", Patterns::Anything(),
-                      "angle(t): muparser expression of t (s), in rad "
-                      "(pi is defined).");
+                      "angle(t): muparser expression of t (s) (pi is "
+                      "defined). Unit: rad.");
     prm.declare_entry("Rotation centre", "0, 0, 0", Patterns::Anything(),
-                      "A point on the rotation axis, in length units; "
-                      "each coordinate a number or an expression of the "
-                      "scene's Constants.");
+                      "A point on the rotation axis; each coordinate a "
+                      "number or an expression of the scene's Constants. "
+                      "Unit: length (mm in the IOL scenes).");
   }
 
   void RigidMotion::parse_entries(ParameterHandler  &prm,

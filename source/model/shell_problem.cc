@@ -58,14 +58,15 @@ namespace coshell::model
     prm.enter_subsection("Nonlinear solver");
     prm.declare_entry(
         "Largest rotation per correction", "0", Patterns::Double(0),
-        "rad; 0 = no bound. A Newton correction that would turn some vertex "
+        "0 = no bound. A Newton correction that would turn some vertex "
         "by more than this is scaled down to it, translations with it (the "
         "contact filter's fraction, if smaller, is taken instead; the line "
         "search works on the scaled correction). Load control and time "
         "steps, not the arc-length corrector. A trust region for first "
-        "steps whose linear predictor is far off (the slit annular plate: "
-        "1.8x fewer Newton corrections at 0.05); it costs iterations where "
-        "large rotations are right (an end moment rolling a strip up).");
+        "steps whose linear predictor is far off (the slit annular plate "
+        "needs fewer Newton corrections with it, doc/performance.md); it "
+        "costs iterations where large rotations are right (an end moment "
+        "rolling a strip up). Unit: rad.");
     prm.leave_subsection();
   }
 
