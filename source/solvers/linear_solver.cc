@@ -174,10 +174,10 @@ namespace coshell::solvers
         "rank); amesos-mumps is the distributed direct solver.");
     prm.declare_entry("Tolerance", "1e-10", Patterns::Double(0),
                       "Relative residual tolerance of iterative methods "
-                      "(dimensionless: |r| <= tol |b|).");
+                      "(|r| <= tol |b|). Unit: dimensionless.");
     prm.declare_entry("Maximum iterations", "10000", Patterns::Integer(1),
-                      "Iteration limit of iterative methods "
-                      "(dimensionless).");
+                      "Iteration limit of iterative methods. Unit: "
+                      "dimensionless (a count).");
     prm.declare_entry(
         "Reuse factorization", "false", Patterns::Bool(),
         "umfpack and cholmod: keep the factors (LU or Cholesky) of an "
@@ -189,7 +189,8 @@ namespace coshell::solvers
         "steps. Off: every matrix is factorized.");
     prm.declare_entry("Reuse iterations", "10", Patterns::Integer(1),
                       "GMRES iterations allowed with kept factors before "
-                      "the matrix is factorized (dimensionless).");
+                      "the matrix is factorized. Unit: dimensionless (a "
+                      "count).");
     prm.declare_entry("AMG near-null space", "rigid body",
                       Patterns::Selection("rigid body|none"),
                       "Selects the AMG near-null space. "
@@ -204,10 +205,12 @@ namespace coshell::solvers
         "Selects the ML smoother type (Chebyshev, symmetric "
         "Gauss-Seidel or ILU).");
     prm.declare_entry("AMG smoother sweeps", "2", Patterns::Integer(1),
-                      "Smoothing sweeps per level (dimensionless).");
+                      "Smoothing sweeps per level. Unit: dimensionless (a "
+                      "count).");
     prm.declare_entry("AMG aggregation threshold", "1e-4", Patterns::Double(0),
                       "ML aggregation threshold (drop tolerance of the "
-                      "strength-of-connection graph; dimensionless).");
+                      "strength-of-connection graph). Unit: "
+                      "dimensionless.");
     prm.leave_subsection();
   }
 

@@ -106,30 +106,32 @@ namespace coshell::solvers
   void NewtonParameters::declare_parameters(ParameterHandler &prm)
   {
     prm.declare_entry("Maximum iterations", "30", Patterns::Integer(1),
-                      "Newton iterations per attempt of a step "
-                      "(dimensionless).");
+                      "Newton iterations per attempt of a step. Unit: "
+                      "dimensionless (a count).");
     prm.declare_entry(
         "Residual tolerance", "1e-7", Patterns::Double(0),
-        "Dimensionless. Newton has converged when |r| <= tol * F, F the "
+        "Newton has converged when |r| <= tol * F, F the "
         "largest of the internal, external and inertia force norms (so a "
         "displacement-driven step with no external load is judged too), or "
-        "when both Energy and Increment tolerances are met.");
+        "when both Energy and Increment tolerances are met. Unit: "
+        "dimensionless.");
     prm.declare_entry("Energy tolerance", "1e-16", Patterns::Double(0),
-                      "Dimensionless: |du.r| <= tol |du_0.r_0|, the energy of "
-                      "the last correction relative to the first of the "
-                      "step.");
+                      "Converged when |du.r| <= tol |du_0.r_0|, the energy "
+                      "of the last correction relative to the first of the "
+                      "step. Unit: dimensionless.");
     prm.declare_entry("Increment tolerance", "1e-8", Patterns::Double(0),
-                      "Dimensionless: |du| <= tol |sum of corrections in the "
-                      "step|.");
+                      "Converged when |du| <= tol |sum of corrections in "
+                      "the step|. Unit: dimensionless.");
     prm.declare_entry(
         "Correction tolerance", "0", Patterns::Double(0),
-        "Length (translations) and rad (rotations); 0 = not used. Newton "
+        "0 = not used. Newton "
         "has also converged when the largest entry of its correction, "
         "before the collision filter and the line search shorten it, is at "
         "most this: the distance Newton still expects to move (the "
         "criterion of Li et al. 2020, IPC, on the step's displacement). "
         "Where a stiff barrier leaves the residual converging slowly, this "
-        "stops at a stated accuracy of the configuration.");
+        "stops at a stated accuracy of the configuration. Unit: length "
+        "for translations (mm in the IOL scenes), rad for rotations.");
     prm.declare_entry("Line search", "false", Patterns::Bool(),
                       "Scale each Newton correction du by s so that "
                       "|du.r(s du)| <= 0.8 |du.r(0)| (secant steps on the "
@@ -138,15 +140,16 @@ namespace coshell::solvers
                       "raises the residual at first, converges faster.");
     prm.declare_entry(
         "Climbs before convex tangent", "3", Patterns::Integer(1),
-        "Dimensionless. After this many corrections of an attempt have "
+        "After this many corrections of an attempt have "
         "climbed the energy (du.r < 0: the tangent is indefinite along "
         "them), Newton asks the problem for a convex tangent and, if it has "
         "one (contact with Projected tangent on stall), discards the "
-        "correction and solves again with it. Three on the IOL injection: "
-        "1 switched too early (a fifth more iterations on the fold).");
+        "correction and solves again with it. The IOL injection uses "
+        "three: with 1 the switch comes too early and the fold takes more "
+        "iterations. Unit: dimensionless (a count).");
     prm.declare_entry("Divergence limit", "1e8", Patterns::Double(1),
-                      "Dimensionless: a relative residual |r|/F above this "
-                      "ends the attempt as diverged.");
+                      "A relative residual |r|/F above this ends the "
+                      "attempt as diverged. Unit: dimensionless.");
   }
 
   void NewtonParameters::parse_parameters(ParameterHandler &prm)

@@ -245,12 +245,13 @@ namespace coshell::solvers
     prm.enter_subsection("Parallel");
     prm.declare_entry("Threads", "0", Patterns::Integer(0),
                       "Number of threads for assembly, and for the BLAS "
-                      "(OpenBLAS) the linear solvers use (dimensionless); "
+                      "(OpenBLAS) the linear solvers use; "
                       "0 = all cores (capped by the environment variable "
                       "DEAL_II_NUM_THREADS if set). A CHOLMOD factorization "
                       "of under 1e8 flops runs its BLAS on one thread, and "
                       "OpenMP regions (CHOLMOD opens some) run on one "
-                      "thread at any setting.");
+                      "thread at any setting. Unit: dimensionless (a "
+                      "count).");
     prm.leave_subsection();
   }
 

@@ -14,20 +14,23 @@ namespace coshell::solvers
     {
       prm.declare_entry("Load steps", "10", Patterns::Integer(1),
                         "Initial number of equal increments of the path "
-                        "parameter from 0 to 1 (dimensionless; arc length: "
-                        "sets the first arc from the first increment).");
+                        "parameter from 0 to 1 (arc length: sets the first "
+                        "arc from the first increment). Unit: dimensionless "
+                        "(a count).");
       prm.declare_entry("Maximum step cuts", "12", Patterns::Integer(0),
                         "How often in a row a failed step may be cut before "
-                        "the run stops with an error (dimensionless).");
+                        "the run stops with an error. Unit: dimensionless "
+                        "(a count).");
       prm.declare_entry("Easy step iterations", "6", Patterns::Integer(1),
                         "A step that converged in at most this many Newton "
-                        "iterations lets the next one grow (dimensionless).");
+                        "iterations lets the next one grow. Unit: "
+                        "dimensionless (a count).");
       prm.declare_entry("Step growth factor", "2", Patterns::Double(1),
                         "Growth of the step after an easy one, up to the "
-                        "initial size (dimensionless).");
+                        "initial size. Unit: dimensionless.");
       prm.declare_entry("Step cut factor", "0.5", Patterns::Double(0.01, 0.99),
                         "A failed step is retried with this fraction of its "
-                        "size (dimensionless).");
+                        "size. Unit: dimensionless.");
     }
   } // namespace
 
@@ -54,8 +57,7 @@ namespace coshell::solvers
     prm.declare_entry(
         "Geometric stiffness", "auto",
         Patterns::Selection("auto|current forces|extrapolated forces"),
-        "A choice (no unit): which local forces of each co-rotational "
-        "element drive the "
+        "Which local forces of each co-rotational element drive the "
         "terms of the tangent that are linear in them (the geometric "
         "stiffness and the rotation-update term). current forces: those "
         "of the current iterate, the exact derivative of the residual. "
@@ -67,17 +69,16 @@ namespace coshell::solvers
         "correction's spurious membrane forces spoil the next tangent. "
         "auto: extrapolated forces in static analyses until a step fails, "
         "then current forces for the rest of the stage; current forces in "
-        "dynamic ones (measured: doc/performance.md, \"Extrapolated "
-        "forces in the geometric stiffness\").");
+        "dynamic ones (doc/performance.md).");
     declare_step_control_entries(prm);
     NewtonParameters::declare_parameters(prm);
     prm.declare_entry("Maximum arc-length steps", "200", Patterns::Integer(1),
                       "Arc length: the run stops after this many steps "
-                      "even if the load factor has not reached the maximum "
-                      "(dimensionless).");
+                      "even if the load factor has not reached the "
+                      "maximum. Unit: dimensionless (a count).");
     prm.declare_entry("Maximum load factor", "1", Patterns::Double(0),
-                      "Arc length: stop once the load factor reaches this "
-                      "(dimensionless).");
+                      "Arc length: stop once the load factor reaches "
+                      "this. Unit: dimensionless.");
     prm.leave_subsection();
   }
 

@@ -307,8 +307,8 @@ namespace coshell::solvers
         "slopes times the correction).");
     prm.declare_entry(
         "Lie group", "R3xSO3", Patterns::Selection("R3xSO3|SE3"),
-        "The group each vertex's configuration (x, R) is integrated on "
-        "(dimensionless choice). R3xSO3: translations in global axes, "
+        "The group each vertex's configuration (x, R) is integrated on. "
+        "R3xSO3: translations in global axes, "
         "rotations on SO(3). SE3: translation and rotation together, with "
         "velocities in the node's frame (Sonneville, Cardona & Bruls "
         "2014), so a motion of constant twist, such as a rigid spin, is "
@@ -316,31 +316,35 @@ namespace coshell::solvers
         "trapezoidal phase error (7 % at 30 degrees per step). SE3 needs "
         "Element/Formulation = corotational; its tangent is not symmetric.");
     prm.declare_entry("Time step", "1e-3", Patterns::Double(),
-                      "Initial time step, s; > 0.");
+                      "Initial time step; > 0. Unit: time (s).");
     prm.declare_entry("Minimum time step", "1e-9", Patterns::Double(),
                       "The run stops with an error when a step must be cut "
-                      "below this, s.");
+                      "below this. Unit: time (s).");
     prm.declare_entry("Maximum time step", "1e-3", Patterns::Double(),
-                      "Steps grow after easy ones up to this, s.");
+                      "Steps grow after easy ones up to this. Unit: time "
+                      "(s).");
     prm.declare_entry("Spectral radius", "0.9", Patterns::Double(0, 1),
-                      "rho_inf of generalized alpha (dimensionless, in [0, "
-                      "1]): 1 keeps every frequency (no numerical "
-                      "damping), 0 annihilates the highest in one step.");
+                      "rho_inf of generalized alpha, in [0, 1]: 1 keeps "
+                      "every frequency (no numerical damping), 0 "
+                      "annihilates the highest in one step. Unit: "
+                      "dimensionless.");
     prm.declare_entry("End time", "1", Patterns::Double(),
                       "Duration of a scene with Analysis/Type = dynamic "
-                      "and no stages, s (stages give their own Duration).");
+                      "and no stages (stages give their own Duration). "
+                      "Unit: time (s).");
     prm.declare_entry("Maximum step cuts", "12", Patterns::Integer(0),
-                      "How often in a row a failed step may be cut "
-                      "(dimensionless).");
+                      "How often in a row a failed step may be cut. Unit: "
+                      "dimensionless (a count).");
     prm.declare_entry("Easy step iterations", "4", Patterns::Integer(1),
                       "A step converged in at most this many Newton "
-                      "iterations lets the next grow (dimensionless).");
+                      "iterations lets the next grow. Unit: dimensionless "
+                      "(a count).");
     prm.declare_entry("Step growth factor", "1.5", Patterns::Double(1),
-                      "Growth of the time step after an easy step "
-                      "(dimensionless).");
+                      "Growth of the time step after an easy step. Unit: "
+                      "dimensionless.");
     prm.declare_entry(
         "Energy growth limit", "0", Patterns::Double(0),
-        "Energy guard (dimensionless; 0: off). A converged step is "
+        "Energy guard (0: off). A converged step is "
         "rejected and cut when the shell's energy (kinetic and strain) "
         "grows over it by more than the work done on the shell in the "
         "step (loads, supports' reactions, every contact force) plus this "
@@ -350,10 +354,11 @@ namespace coshell::solvers
         "state far from the step's start, which no residual test sees; "
         "costs one strain-energy pass per step. Newton's schemes only: "
         "a linearized step evaluates no forces at its end, and is not "
-        "judged.");
+        "judged. Unit: dimensionless (a fraction of the energy).");
     prm.declare_entry("Progress interval", "5", Patterns::Double(0),
-                      "Wall-clock seconds between progress lines (step, t, "
-                      "dt, iterations, real-time factor); 0: every step.");
+                      "Wall-clock time between progress lines (step, t, "
+                      "dt, iterations, real-time factor); 0: every step. "
+                      "Unit: s (wall clock).");
     prm.leave_subsection();
   }
 
