@@ -17,6 +17,7 @@ namespace
       "usage: coshell FILE.prm [--set \"Section/Name=value\" ...] "
       "[--output DIR] [--interactive] [--restart FILE]\n"
       "       coshell --print-parameters [FILE.prm]\n"
+      "       coshell --print-parameters-json\n"
       "       coshell --help\n"
       "\n"
       "  FILE.prm              scene parameter file (deal.II ParameterHandler "
@@ -28,6 +29,9 @@ namespace
       "                        documentation, in .prm form (with FILE.prm: "
       "its\n"
       "                        values)\n"
+      "  --print-parameters-json  every parameter with its default, accepted\n"
+      "                        values and documentation, as JSON (the source\n"
+      "                        of doc/parameters.md)\n"
       "  --interactive         dynamic stages advance to the times read "
       "from\n"
       "                        standard input, one per line; one line per "
@@ -50,6 +54,7 @@ namespace
     std::string              restart_file;
     bool                     help             = false;
     bool                     print_parameters = false;
+    bool                     print_json       = false;
     bool                     interactive      = false;
   };
 
@@ -66,6 +71,8 @@ namespace
         line.interactive = true;
       else if (arg == "--print-parameters")
         line.print_parameters = true;
+      else if (arg == "--print-parameters-json")
+        line.print_parameters = line.print_json = true;
       else if (arg == "--set" && has_value)
         line.overrides.push_back(argv[++i]);
       else if (arg == "--output" && has_value)
@@ -114,7 +121,9 @@ namespace
       coshell::driver::read_parameters(prm, line.prm_file, line.overrides);
     if (line.print_parameters)
     {
-      prm.print_parameters(std::cout, dealii::ParameterHandler::PRM);
+      prm.print_parameters(std::cout, line.print_json
+                                          ? dealii::ParameterHandler::JSON
+                                          : dealii::ParameterHandler::PRM);
       return 0;
     }
     if (output.empty())
