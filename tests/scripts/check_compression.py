@@ -19,8 +19,8 @@ import json
 import math
 import os
 
-from scene_runner import (add_scene_arguments, exit_with,
-                          kept_factors_failures, run_scene)
+from coshell_checks import (add_scene_arguments, exit_with,
+                            kept_factors_failures, run_scene)
 
 
 def read_clamp_forces(output):
@@ -75,28 +75,6 @@ def read_optic(output):
     return optic
 
 
-def plot(rows, path):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    fig, (left, right) = plt.subplots(1, 2, figsize=(10, 4))
-    diameters = [r[1] for r in rows]
-    left.plot(diameters, [r[2] for r in rows], "o-", ms=3)
-    left.set_xlabel("compressed diameter (mm)")
-    left.set_ylabel("clamp force (mN)")
-    left.invert_xaxis()
-    left.grid(alpha=0.3)
-    right.plot(diameters, [r[4] for r in rows], label="axial displacement (mm)")
-    right.plot(diameters, [r[3] for r in rows], label="decentration (mm)")
-    right.set_xlabel("compressed diameter (mm)")
-    right.invert_xaxis()
-    right.legend()
-    right.grid(alpha=0.3)
-    fig.suptitle("ISO 11979-3 compression of the C-loop lens (E = 1 MPa)")
-    fig.tight_layout()
-    fig.savefig(path, dpi=100)
-
-
 def main():
     parser = argparse.ArgumentParser()
     add_scene_arguments(parser)
@@ -106,7 +84,7 @@ def main():
     parser.add_argument("--contact-radius", type=float, default=5.0,
                         help="radius of the clamps' offset faces, mm")
     parser.add_argument("--final-diameter", type=float, default=10.0)
-    parser.add_argument("--plot", help="PNG to write")
+    parser.add_argument("--plot", help="PNG to write (checker_figures.py)")
     parser.add_argument("--buckle-between", nargs=2, type=float,
                         metavar=("D_LARGE", "D_SMALL"),
                         help="the force's first drop starts at a diameter "
@@ -135,7 +113,8 @@ def main():
         for r in rows:
             f.write(",".join(f"{v:.8g}" for v in r) + "\n")
     if args.plot:
-        plot(rows, args.plot)
+        import checker_figures
+        checker_figures.compression_chart(rows, args.plot)
     failures = []
     final = rows[-1]
     print(f"at D = {final[1]:.3f} mm: force {final[2]:.5g} mN (left clamp "

@@ -38,19 +38,13 @@ outputs) against references given here.
 Prints a line per check and 'N passed, M failed'; exits 1 on a failure.
 """
 import argparse
-import csv
-import json
 import math
 import os
 import sys
 
-from scene_runner import (add_scene_arguments, energy_balance,
-                          force_file_check, run_scene)
-
-
-def read_rows(path):
-    with open(path) as f:
-        return list(csv.DictReader(f))
+from coshell_checks import (Checks, add_scene_arguments, energy_balance,
+                            force_file_check, read_rows, read_summary,
+                            run_scene)
 
 
 def quantity_rows(output):
@@ -139,13 +133,8 @@ def main():
     run_scene(args.coshell, args.prm, args.output, args.set)
     forces = read_rows(os.path.join(args.output, "contact_forces.csv"))
     last = last_step_rows(forces)
-    measured, failures, passed = [], 0, 0
-
-    def check(ok, text):
-        nonlocal failures, passed
-        print(("PASS: " if ok else "FAIL: ") + text)
-        passed += ok
-        failures += not ok
+    checks = Checks()
+    check = checks.that
 
     for name, obstacle, dx, dy, dz, column in args.force_file:
         ok, sentence = force_file_check(
@@ -155,14 +144,14 @@ def main():
     for component, value, rtol in args.reaction:
         total = sum(float(r[component]) for r in last)
         error = abs(total - float(value)) / abs(float(value))
-        measured.append((f"reaction_{component}_relative_error", error))
+        checks.record(f"reaction_{component}_relative_error", error)
         check(error <= float(rtol),
               f"reaction {component} = {total:.10g}, expected {value}, "
               f"relative error {error:.3g} <= {rtol}")
     gaps = [float(r["min_distance"]) for r in forces]
     finite_gaps = [g for g in gaps if math.isfinite(g)]
     smallest = min(finite_gaps) if finite_gaps else math.inf
-    measured.append(("smallest_gap", smallest))
+    checks.record("smallest_gap", smallest)
     if args.gap_nonnegative:
         check(smallest >= 0, f"smallest gap over every iterate {smallest:.6g} >= 0")
     if args.gap_below is not None:
@@ -173,7 +162,7 @@ def main():
         gap = min(float(r["min_distance"]) for r in last)
         value, rtol = args.last_gap
         error = abs(gap - value) / abs(value)
-        measured.append(("last_gap", gap))
+        checks.record("last_gap", gap)
         check(error <= rtol, f"last step's smallest gap {gap:.8g}, expected "
               f"{value:.8g}, relative error {error:.3g} <= {rtol}")
     if args.active_pairs is not None:
@@ -185,7 +174,7 @@ def main():
     for name, value, rtol in args.final:
         v = float(rows[-1][name])
         error = abs(v - float(value)) / abs(float(value))
-        measured.append((f"{name}_relative_error", error))
+        checks.record(f"{name}_relative_error", error)
         check(error <= float(rtol),
               f"final {name} = {v:.8g}, expected {value}, relative error "
               f"{error:.3g} <= {rtol}")
@@ -194,7 +183,7 @@ def main():
         a = second_derivative([float(r["time"]) for r in window],
                               [float(r[name]) for r in window])
         error = abs(a - float(value)) / abs(float(value))
-        measured.append((f"{name}_acceleration", a))
+        checks.record(f"{name}_acceleration", a)
         check(error <= float(rtol),
               f"d2({name})/dt2 over t in [{t0}, {t1}] = {a:.6g}, expected "
               f"{value}, relative error {error:.3g} <= {rtol}")
@@ -202,17 +191,17 @@ def main():
         def at(t):
             return float(min(rows, key=lambda r: abs(float(r["time"]) - float(t)))[name])
         change = abs(at(t1) - at(t0))
-        measured.append((f"{name}_change", change))
+        checks.record(f"{name}_change", change)
         check(change <= float(limit),
               f"|{name}({t1}) - {name}({t0})| = {change:.6g} <= {limit}")
     for name, limit in args.max_abs:
         largest = max(abs(float(r[name])) for r in rows)
-        measured.append((f"{name}_max_abs", largest))
+        checks.record(f"{name}_max_abs", largest)
         check(largest <= float(limit), f"max |{name}| = {largest:.6g} <= {limit}")
     for obstacle, component, lo, hi in args.force_range:
         value = sum(float(r[component]) for r in last
                     if int(float(r["obstacle"])) == int(obstacle))
-        measured.append((f"obstacle_{obstacle}_{component}", value))
+        checks.record(f"obstacle_{obstacle}_{component}", value)
         check(float(lo) <= value <= float(hi),
               f"obstacle {obstacle} {component} = {value:.6g} in [{lo}, {hi}]")
     for obstacle, numerator, denominator, value, rtol in args.force_ratio:
@@ -220,22 +209,21 @@ def main():
             return sum(float(r[name]) for r in last
                        if int(float(r["obstacle"])) == int(obstacle))
         ratio = component(numerator) / component(denominator)
-        measured.append((f"obstacle_{obstacle}_{numerator}_over_{denominator}",
-                         ratio))
+        checks.record(f"obstacle_{obstacle}_{numerator}_over_{denominator}",
+                      ratio)
         check(abs(ratio - float(value)) <= float(rtol) * abs(float(value)),
               f"obstacle {obstacle} {numerator}/{denominator} = {ratio:.6g}, "
               f"expected {value} within {rtol}")
     if args.summary:
-        with open(os.path.join(args.output, "summary.json")) as f:
-            summary = json.load(f)
+        summary = read_summary(args.output)
         contact = summary.get("levels", [summary])[-1]["contact"]
     for key, lo, hi in args.summary:
         value = contact[key]
-        measured.append((key, value))
+        checks.record(key, value)
         check(float(lo) <= value <= float(hi), f"{key} = {value:.6g} in [{lo}, {hi}]")
     if args.edge_clearance:
         clearance = lowest_edge_clearance(args.output)
-        measured.append(("edge_clearance", clearance))
+        checks.record("edge_clearance", clearance)
         lo, hi = args.edge_clearance
         check(lo <= clearance <= hi, f"clearance of the obstacles' lowest edge "
               f"over the mid-surface {clearance:.6g} in [{lo}, {hi}]")
@@ -243,7 +231,7 @@ def main():
         energies = energy_balance(quantity_rows(args.output), forces)
         supplied = sum(energies["obstacle_work"].values())
         share = abs(energies["remainder"]) / supplied
-        measured.append(("energy_remainder_share", share))
+        checks.record("energy_remainder_share", share)
         check(share <= args.energy_balance,
               f"energy: the obstacles' work {supplied:.6g} = strain "
               f"{energies['strain_energy']:.6g} + kinetic "
@@ -253,12 +241,9 @@ def main():
               f"{energies['external_work']:.3g}) within "
               f"{share:.3g} <= {args.energy_balance} of it")
     if args.report:
-        test = os.path.basename(os.path.normpath(args.output))
-        with open(args.report, "a") as f:
-            for name, value in measured:
-                f.write(f"{test},{name},{value:.10g}\n")
-    print(f"{passed} passed, {failures} failed")
-    sys.exit(1 if failures else 0)
+        checks.write_report(args.report,
+                            os.path.basename(os.path.normpath(args.output)))
+    checks.exit()
 
 
 if __name__ == "__main__":

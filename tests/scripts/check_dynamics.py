@@ -28,17 +28,12 @@ references given here (only the rows of --stage N when given).
 Prints a line per check and 'N passed, M failed'; exits 1 on a failure.
 """
 import argparse
-import csv
-import json
 import math
 import os
-import sys
 
-from scene_runner import add_scene_arguments, kept_factors_failures, run_scene
-
-
-def columns(rows, name):
-    return [float(r[name]) for r in rows]
+from coshell_checks import (Checks, add_scene_arguments, floats,
+                            kept_factors_failures, read_rows, read_summary,
+                            run_scene)
 
 
 def zero_crossings(t, x):
@@ -84,25 +79,20 @@ def main():
     args = parser.parse_args()
 
     run_scene(args.coshell, args.prm, args.output, args.set)
-    with open(os.path.join(args.output, "time_history.csv")) as f:
-        rows = list(csv.DictReader(f))
+    rows = read_rows(os.path.join(args.output, "time_history.csv"))
     if args.stage is not None:
         rows = [r for r in rows if int(float(r["stage"])) == args.stage]
-    t = columns(rows, "time")
-    results, report = [], []
-    with open(os.path.join(args.output, "summary.json")) as f:
-        rejections = json.load(f).get("energy_guard_rejections")
+    t = floats(rows, "time")
+    summary = read_summary(args.output)
+    rejections = summary.get("energy_guard_rejections")
     if rejections is not None:  # reported, not asserted: round-off decides
         print(f"info the energy guard rejected {rejections} step(s)")
 
-    def check(ok, text, name=None, value=None):
-        print(("ok   " if ok else "FAIL ") + text)
-        results.append(ok)
-        if name is not None:
-            report.append(f"{os.path.basename(args.output)},{name},{value:.8g}")
+    checks = Checks()
+    check = checks.that
 
     for qoi, period, rtol in args.period:
-        crossings = zero_crossings(t, columns(rows, qoi))
+        crossings = zero_crossings(t, floats(rows, qoi))
         if len(crossings) < 2:
             check(False, f"{qoi}: fewer than two zero crossings")
             continue
@@ -112,7 +102,7 @@ def main():
               f"{qoi} period {measured:.6g} vs {float(period):.6g}: error "
               f"{error:.3e} (tolerance {rtol})", f"period_{qoi}", measured)
     for qoi, limit in args.amplitude_change + args.amplitude_decay:
-        peaks = period_peaks(t, columns(rows, qoi))
+        peaks = period_peaks(t, floats(rows, qoi))
         if peaks is None:
             check(False, f"{qoi}: too few periods for an amplitude")
             continue
@@ -136,15 +126,14 @@ def main():
               f"{prefix} drift {drift:.3e} of {reference:.4g} (limit {limit})",
               f"drift_{prefix}", drift)
     for column, rtol in args.no_growth:
-        values = columns(rows, column)
+        values = floats(rows, column)
         growth = (max(values) - values[0]) / abs(values[0])
         check(growth <= float(rtol),
               f"{column} growth {growth:.3e} of its first value (limit {rtol})",
               f"growth_{column}", growth)
     if args.no_energy_growth is not None:
-        with open(os.path.join(args.output, "summary.json")) as f:
-            initial = json.load(f)["initial_total_energy"]
-        values = columns(rows, "total_energy")
+        initial = summary["initial_total_energy"]
+        values = floats(rows, "total_energy")
         growth = (max(values) - initial) / abs(initial)
         check(growth <= args.no_energy_growth,
               f"total_energy: largest {max(values):.6g} against "
@@ -152,7 +141,7 @@ def main():
               f"(limit {args.no_energy_growth})",
               "growth_from_start_total_energy", growth)
     if args.energy_balance is not None:
-        energy, work, dissipated = (columns(rows, c) for c in
+        energy, work, dissipated = (floats(rows, c) for c in
                                     ("total_energy", "external_work", "dissipated_energy"))
         balance = [e - w + d for e, w, d in zip(energy, work, dissipated)]
         scale = max(max(abs(w) for w in work), max(energy))
@@ -169,11 +158,9 @@ def main():
         unused = kept_factors_failures(args.output)
         check(not unused, "kept factors used" if not unused else unused[0])
     if args.report:
-        with open(args.report, "a") as f:
-            f.write("".join(line + "\n" for line in report))
-    passed = sum(results)
-    print(f"{passed} passed, {len(results) - passed} failed")
-    sys.exit(0 if all(results) else 1)
+        checks.write_report(args.report, os.path.basename(args.output),
+                            digits=8)
+    checks.exit()
 
 
 if __name__ == "__main__":

@@ -19,10 +19,11 @@ per cell, membrane_strain, bending_strain and surface_strain. Checked:
 import argparse
 import math
 import os
-import subprocess
 import sys
 
 import numpy as np
+
+from coshell_checks import exit_with, run_scene
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)),
                                 "..", "..", "doc", "scripts"))
@@ -31,9 +32,8 @@ import render_vtu  # noqa: E402
 
 def last_strains(coshell, prm, output, subdivisions):
     """Per cell of the last VTU: membrane, bending and surface strain."""
-    subprocess.run([coshell, prm, "--output", output, "--set",
-                    f"Mesh/Subdivisions x={subdivisions}"],
-                   check=True, stdout=subprocess.DEVNULL)
+    run_scene(coshell, prm, output, [f"Mesh/Subdivisions x={subdivisions}"],
+              quiet=True)
     frames = render_vtu.read_pvd(os.path.join(output, "solution.pvd"))
     mesh = render_vtu.read_vtu(frames[-1].shell_file)
     return {name: render_vtu.cell_field(mesh, name + "_strain")
@@ -86,11 +86,7 @@ def main():
                 problems.append(f"{name} converges at order {order:.2f} "
                                 f"from {n0} to {n1} subdivisions "
                                 f"(at least {args.min_order} required)")
-    for p in problems:
-        print("FAIL:", p)
-    checks = 1 + 3 * (len(rows) - 1)
-    print(f"{checks - len(problems)} passed, {len(problems)} failed")
-    sys.exit(1 if problems else 0)
+    exit_with(problems, 1 + 3 * (len(rows) - 1))
 
 
 if __name__ == "__main__":

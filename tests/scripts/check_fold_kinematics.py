@@ -24,8 +24,7 @@ import csv
 import math
 import os
 
-from scene_runner import (Checks, add_scene_arguments, exit_with, read_rows,
-                          run_scene)
+from coshell_checks import Checks, add_scene_arguments, read_rows, run_scene
 
 REST_LENGTH = 6.0  # mm, rim to centre to rim
 
@@ -65,30 +64,6 @@ def write_table(path, runs):
                                  r["strain_energy"]])
 
 
-def draw(path, runs):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    figure, (left, right) = plt.subplots(1, 2, figsize=(9, 3.6))
-    for formulation, rows in runs.items():
-        t = [float(r["time"]) for r in rows]
-        left.plot(t, [100 * line_stretch(r) for r in rows], label=formulation)
-        right.plot(t, [100 * float(r["max_membrane_strain"]) for r in rows],
-                   label=formulation)
-    left.set_xlabel("time (s)")
-    left.set_ylabel("stretch of the optic's line rim-centre-rim (%)")
-    right.set_xlabel("time (s)")
-    right.set_ylabel("largest membrane strain (%)")
-    for axes in (left, right):
-        axes.grid(True, alpha=0.3)
-        axes.legend()
-    figure.suptitle("IOL fold by the cartridge's wings: co-rotational "
-                    "against linear kinematics")
-    figure.tight_layout()
-    os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
-    figure.savefig(path, dpi=120)
-
-
 def main():
     parser = argparse.ArgumentParser(description=__doc__)
     add_scene_arguments(parser)
@@ -102,7 +77,8 @@ def main():
     runs = {f: run(args, f) for f in ("corotational", "linear")}
     write_table(os.path.join(args.output, "fold_kinematics.csv"), runs)
     if args.figure:
-        draw(args.figure, runs)
+        import checker_figures
+        checker_figures.fold_kinematics_chart(args.figure, runs, line_stretch)
 
     check = Checks()
     corotational = max(line_stretch(r) for r in runs["corotational"])
@@ -121,7 +97,7 @@ def main():
     check(f"linear: the same line has grown by {100 * linear:.3g} % >= "
           f"{100 * args.linear_stretch:g} % (rotations taken as stretch)",
           linear >= args.linear_stretch)
-    exit_with(check.failures)
+    check.exit()
 
 
 if __name__ == "__main__":

@@ -11,7 +11,7 @@ import json
 import math
 import os
 
-from scene_runner import add_scene_arguments, exit_with, run_scene
+from coshell_checks import add_scene_arguments, exit_with, run_scene
 
 
 def arc(centre, radius, start, end, n):

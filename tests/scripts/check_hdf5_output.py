@@ -27,13 +27,10 @@ import h5py
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from scene_runner import Checks, add_scene_arguments, exit_with, run_scene  # noqa: E402
+from coshell_checks import Checks, add_scene_arguments, run_scene  # noqa: E402
 
 checks = Checks()
-
-
-def check(condition, message):
-    checks(message, condition)
+check = checks.that
 
 
 def data_items(grid):
@@ -94,7 +91,7 @@ def main():
         check(abs(abs(measured) - abs(expected)) <= 2e-7 * abs(expected),
               f"{name}: {measured:.12g} in the HDF5 file, {expected:.12g} in "
               f"summary.json")
-    exit_with(checks.failures)
+    checks.exit()
 
 
 if __name__ == "__main__":

@@ -33,16 +33,16 @@ RADIUS mm of each junction's fillet (or corner) are checked to have the
 size SIZE mm (lens.geo junction_mesh_size and junction_mesh_radius).
 
 With --fold-only WIDTH the run is the fold stage alone: the gaps, the
-energy and the optic's width at the end (<= WIDTH) are checked and the
-folded lens is drawn.
+energy and the optic's width at the end (<= WIDTH) are checked (and,
+with --figures, the folded lens is drawn).
 
 Checks coshell's plunger_force.csv (time, plunger_displacement, force_n)
 against contact_forces.csv, and so the plunger's sleeve's
-sleeve_force.csv where the scene has the sleeve on, and, with --figures,
-writes the PNGs: the
-plunger force against its travel, the plunger force, strains and
-smallest gap against time, the folded lens (the paper's Fig. 4) and the
-deployment sequence.
+sleeve_force.csv where the scene has the sleeve on. With --figures DIR
+it also writes the PNGs (checker_figures.py; without it nothing is
+drawn): the plunger force against its travel, the plunger force,
+strains and energies against time, the folded lens (the paper's Fig. 4)
+and the deployment sequence.
 Reports the optic's decentration and tilt in the bag, each obstacle's
 smallest gap, and the real-time factor of the whole run, of each stage
 and of stages 1 to 3 (the injection without the settling). The nozzle's
@@ -52,21 +52,19 @@ import argparse
 import json
 import math
 import os
-import subprocess
 import sys
 
 import numpy as np
 
-from scene_runner import (add_scene_arguments, energy_balance, exit_with,
-                          force_file_check, read_rows, run_contact_scene,
-                          surgical_real_time_factor)
+from coshell_checks import (add_scene_arguments, check_energy_balance,
+                            column, force_file_check, read_rows,
+                            run_contact_scene, surgical_real_time_factor)
 
 SCRIPTS = os.path.dirname(os.path.abspath(__file__))
 # x of the trailing haptic's end at rest (mm), injection.prm's trail_ux
 # point.
 TRAILING_END_X = -6.3
-RENDER = os.path.join(SCRIPTS, "..", "..", "doc", "scripts", "render_vtu.py")
-sys.path.insert(0, os.path.dirname(RENDER))
+sys.path.insert(0, os.path.join(SCRIPTS, "..", "..", "doc", "scripts"))
 import render_vtu  # noqa: E402
 from lens_junctions import check_fillets, check_refinement  # noqa: E402
 
@@ -124,10 +122,6 @@ def parse_arguments():
                              "gaps, the energy and that the optic's width "
                              "across the axis ends at most WIDTH (mm)")
     return parser.parse_args()
-
-
-def column(rows, name):
-    return np.array([float(r[name]) for r in rows])
 
 
 def rim_chord(history):
@@ -439,158 +433,14 @@ def check_optic_pose(checks, history, optic_points, centre):
 
 
 def check_energy(checks, history, forces, args):
-    energies = energy_balance(history, forces)
-    works = energies["obstacle_work"]
-    plunger = works.get(args.plunger, 0.0)
-    remainder = energies["remainder"]
-    supplied = sum(works.values()) + energies["external_work"]
-    print("energy (N mm): plunger work {:.5g}, other obstacles (wings, rod, "
-          "the sleeve if on) "
-          "{:.4g}, external {external_work:.3g}; strain {strain_energy:.5g}, "
-          "kinetic {kinetic_energy:.3g}, drag, damping and friction "
-          "{dissipated_energy:.5g}, barrier {contact_energy:.3g}; remainder "
-          "{remainder:.3g} ({:.3g} % of the work supplied)".format(
-              plunger, sum(works.values()) - plunger,
-              100 * remainder / supplied, **energies))
-    tolerance = args.energy_tolerance * supplied
-    checks(f"energy balance within {100 * args.energy_tolerance:g} % of "
-           "the work the plunger, wings and rod (and the sleeve) supplied",
-           abs(remainder) <= tolerance)
-
-
-def plot(args, history, time, displacement, push, chord):
-    """injection_history.png: over stages 1 to 3 (the settling's long,
-    quiet tail would squeeze them) the plunger force, the optic's width,
-    the largest strains and the energies; over the whole run the optic's
-    decentration and tilt, which come to rest in stage 4."""
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    os.makedirs(args.figures, exist_ok=True)
-    t, stage = column(history, "time"), column(history, "stage")
-    surgical = stage <= 3
-    figure, axes = plt.subplots(3, 2, figsize=(11, 10))
-    axes[0, 0].plot(time[time <= t[surgical].max()],
-                    1e3 * push[time <= t[surgical].max()])
-    axes[0, 0].set(xlabel="time (s)", ylabel="plunger force (mN)")
-    axes[0, 1].plot(t[surgical], chord[surgical],
-                    label="optic width across the axis")
-    axes[0, 1].axhline(2 * args.nozzle_radius, ls="--", color="k",
-                       label="nozzle inner diameter")
-    axes[0, 1].set(xlabel="time (s)", ylabel="mm")
-    axes[0, 1].legend(fontsize=8)
-    for name in ("max_membrane_strain", "max_bending_strain",
-                 "max_surface_strain"):
-        if name in history[0]:
-            axes[1, 0].plot(t[surgical], 100 * column(history, name)[surgical],
-                            label=name.replace("_", " "))
-    axes[1, 0].set(xlabel="time (s)", ylabel="largest strain (%)")
-    axes[1, 0].legend(fontsize=8)
-    for name in ("strain_energy", "dissipated_energy", "contact_energy"):
-        axes[1, 1].plot(t[surgical], column(history, name)[surgical],
-                        label=name.replace("_", " "))
-    axes[1, 1].set(xlabel="time (s)", ylabel="N mm")
-    axes[1, 1].legend(fontsize=8)
-    plot_optic_pose(axes[2], t, history, stage >= 3)
-    figure.suptitle(f"IOL injection: {os.path.basename(args.prm)} (stages "
-                    "1 to 3 above; deploy and settling below)")
-    figure.tight_layout()
-    figure.savefig(os.path.join(args.figures, "injection_history.png"), dpi=110)
-    plt.close(figure)
-    plot_plunger_force(plt, args, displacement, push)
-
-
-def plot_optic_pose(axes, t, history, released):
-    """The optic's decentration and tilt against the bag's axis from its
-    release (the 'released' rows): how it comes to rest."""
-    axes[0].plot(t[released], column(history, "optic_decentration")[released])
-    axes[0].set(xlabel="time (s)", ylabel="optic decentration (mm)")
-    axes[1].plot(t[released], column(history, "optic_tilt")[released])
-    axes[1].set(xlabel="time (s)", ylabel="optic tilt (degrees)")
-    for ax in axes:
-        ax.grid(alpha=0.3)
-
-
-def plot_plunger_force(plt, args, displacement, push):
-    """plunger_force.csv's picture: the force against the travel, the
-    curve an injector is characterized by."""
-    figure, axes = plt.subplots(figsize=(7, 4))
-    axes.plot(displacement, 1e3 * push)
-    axes.set(xlabel="plunger travel since t = 0 (mm; back out after the "
-             "stroke)", ylabel="plunger force on the lens (mN)",
-             title=f"plunger_force.csv: {os.path.basename(args.prm)}")
-    figure.tight_layout()
-    figure.savefig(os.path.join(args.figures, "plunger_force.png"), dpi=110)
-    plt.close(figure)
-
-
-def render(arguments):
-    command = [sys.executable, RENDER] + arguments
-    print("rendering:", " ".join(command), flush=True)
-    return subprocess.run(command).returncode == 0
-
-
-def sequence_panels(history, times, args):
-    """The sequence's panels, (time of a frame written, label): the
-    stages' ends and the optic's way through the nozzle, each at the
-    nearest frame; a frame two events share is drawn once."""
-    t, stage = column(history, "time"), column(history, "stage")
-    centre_x = column(history, "optic_ux")
-
-    def first(passed):
-        return t[np.argmax(passed)] if passed.any() else None
-    deploy = t[stage == 3]
-    events = [
-        (t[0], "fold: the wings close"),
-        (t[stage == 1].max(), "fold: folded, rod out"),
-        (first(centre_x > args.nozzle_start), "push: optic enters the nozzle"),
-        (first(centre_x > 0.5 * (args.nozzle_start + args.nozzle_tip)),
-         "push: optic in the nozzle"),
-        (first(centre_x > args.nozzle_tip), "push: optic out of the tip"),
-        (t[stage == 2].max(), "push: plunger at the tip"),
-        (deploy[len(deploy) // 4] if len(deploy) else None, "deploy: opening"),
-        (t[-1], "settle: at rest in the bag" if (stage == 4).any()
-         else "deploy: the end")]
-    panels = {}
-    for when, label in events:
-        if when is not None:
-            panels.setdefault(float(times[np.argmin(abs(times - when))]),
-                              label)
-    return sorted(panels.items())
-
-
-def render_figures(checks, args, history, chord, frames):
-    """Fig. 4 (the folded lens, when the optic's centre is deepest in the
-    nozzle) and the sequence, each panel named by its stage and event."""
-    t = column(history, "time")
-    centre_x = column(history, "optic_ux")
-    times = np.array([f.time for f in frames])
-    in_nozzle = (centre_x > args.nozzle_start) & (centre_x < args.nozzle_tip)
-    folded_time = t[in_nozzle][len(t[in_nozzle]) // 2] if in_nozzle.any() \
-        else t[np.argmax(centre_x)]
-    pvd = os.path.join(args.output, "solution.pvd")
-    panels = sequence_panels(history, times, args)
-    folded = float(times[np.argmin(abs(times - folded_time))])
-    drawn = [
-        render(["--pvd", pvd, "--times", str(folded), "--out",
-                os.path.join(args.output, "folded"), "--view", "20", "-150",
-                "--fit", "shell", "--edges", "--title",
-                f"folded lens in the nozzle, t = {folded:.3g} s"]),
-        render(["--pvd", pvd, "--times"] + [repr(x) for x, _ in panels] +
-               ["--labels"] + [label for _, label in panels] +
-               ["--out", os.path.join(args.output, "sequence"), "--montage",
-                os.path.join(args.figures, "injection_sequence.png"),
-                "--view", "35", "-100", "--fit", "shell"]),
-    ]
-    index = int(np.argmin(abs(times - folded)))
-    source = os.path.join(args.output, f"folded-{index:04d}.png")
-    if os.path.exists(source):
-        os.replace(source, os.path.join(args.figures, "folded_in_nozzle.png"))
-    checks("the folded lens and the sequence are drawn", all(drawn))
+    check_energy_balance(checks, history, forces, args.energy_tolerance,
+                         "the plunger, wings and rod (and the sleeve)",
+                         plunger=args.plunger)
 
 
 def check_fold(checks, history, args):
-    """The fold stage alone: the optic rolled up in the closed wings."""
+    """The fold stage alone: the optic rolled up in the closed wings.
+    Returns the last frame written."""
     chord = rim_chord(history)
     print(f"optic width across the axis: {chord[0]:.4g} mm at rest, "
           f"{chord[-1]:.4g} mm folded")
@@ -598,20 +448,7 @@ def check_fold(checks, history, args):
            chord[-1] <= args.fold_only)
     last = render_vtu.read_pvd(os.path.join(args.output, "solution.pvd"))[-1]
     check_strain_fields(checks, history, last)
-    if args.figures:
-        os.makedirs(args.figures, exist_ok=True)
-        title = f"folded lens, t = {last.time:.3g} s"
-        checks("the folded lens is drawn", render([
-            "--vtu", last.shell_file,
-            "--out", os.path.join(args.figures, "folded_lens.png"),
-            "--view", "20", "-150", "--fit", "shell", "--edges", "--title",
-            title]))
-        checks("the folded lens's surface strain is drawn", render([
-            "--vtu", last.shell_file,
-            "--out", os.path.join(args.figures, "folded_lens_strain.png"),
-            "--view", "20", "-150", "--fit", "shell", "--edges",
-            "--color-by", "surface_strain", "--title",
-            title + ", largest principal strain at either surface"]))
+    return last
 
 
 def check_junctions(checks, args):
@@ -710,9 +547,13 @@ def main():
     if args.junction_fillet or args.junction_refined:
         check_junctions(checks, args)
     if args.fold_only is not None:
-        check_fold(checks, history, args)
+        last = check_fold(checks, history, args)
         check_energy(checks, history, forces, args)
-        exit_with(checks.failures)
+        if args.figures:
+            import checker_figures
+            checks("the folded lens and its strain are drawn",
+                   checker_figures.folded_lens_pictures(args.figures, last))
+        checks.exit()
     time, displacement, push = check_plunger_force(checks, forces, args,
                                                    args.output)
     chord = check_fold_and_exit(checks, history, args)
@@ -729,9 +570,12 @@ def main():
     print_stage_speeds(summary)
     check_stage_times(checks, summary)
     if args.figures:
-        plot(args, history, time, displacement, push, chord)
-        render_figures(checks, args, history, chord, frames)
-    exit_with(checks.failures)
+        import checker_figures
+        checker_figures.injection_history(args, history, time, displacement,
+                                          push, chord)
+        checks("the folded lens and the sequence are drawn",
+               checker_figures.injection_pictures(args, history, frames))
+    checks.exit()
 
 
 if __name__ == "__main__":

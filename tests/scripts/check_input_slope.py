@@ -19,7 +19,7 @@ import shutil
 
 from check_interactive import (input_directions, run_session,
                                session_failures, session_parser)
-from scene_runner import exit_with, read_rows
+from coshell_checks import exit_with, read_rows
 
 
 def main():

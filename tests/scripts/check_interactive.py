@@ -22,7 +22,7 @@ import sys
 
 import numpy as np
 
-from scene_runner import exit_with, read_rows
+from coshell_checks import exit_with, read_rows
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)),
                                 "..", "..", "doc", "scripts"))

@@ -14,7 +14,7 @@ import os
 import shutil
 
 from check_interactive import run_session, session_failures, session_parser
-from scene_runner import exit_with, read_rows
+from coshell_checks import exit_with, read_rows
 
 
 def main():

@@ -39,8 +39,8 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from check_injection import column, push_measures  # noqa: E402
-from scene_runner import (add_scene_arguments, exit_with,  # noqa: E402
-                          read_rows, run_scene)
+from coshell_checks import (add_scene_arguments, exit_with,  # noqa: E402
+                            read_rows, run_scene)
 
 FOLD_END = 1.3  # s, stage 1 of the scene
 PLUNGER = 2  # its obstacle number

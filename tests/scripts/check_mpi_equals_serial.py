@@ -58,7 +58,7 @@ import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-from scene_runner import Checks, add_scene_arguments, exit_with  # noqa: E402
+from coshell_checks import Checks, add_scene_arguments, exit_with  # noqa: E402
 
 STATE_DATASETS = ["values", "rotations", "velocity", "acceleration",
                   "pseudo_acceleration"]
@@ -291,7 +291,7 @@ def main():
         compare_checkpoints(checks, serial, parallel, floor, args.tolerance)
     if args.check_pvtu:
         check_pieces(checks, parallel, args.ranks)
-    exit_with(checks.failures)
+    checks.exit()
 
 
 def check_pieces(checks, parallel, ranks):

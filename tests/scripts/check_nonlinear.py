@@ -25,17 +25,11 @@ Newton history against references given here.
 """
 import argparse
 import csv
-import json
 import math
 import os
-import sys
 
-from scene_runner import add_scene_arguments, run_scene
-
-
-def read_csv(path):
-    with open(path) as f:
-        return list(csv.DictReader(f))
+from coshell_checks import (add_scene_arguments, exit_with, read_rows,
+                            read_summary, run_scene)
 
 
 def check_points(rows, points, rtol, length, column="load_factor"):
@@ -129,8 +123,8 @@ def main():
     args = parser.parse_args()
 
     run_scene(args.coshell, args.prm, args.output, args.set)
-    rows = read_csv(os.path.join(args.output, "load_displacement.csv"))
-    history = read_csv(os.path.join(args.output, "newton_history.csv"))
+    rows = read_rows(os.path.join(args.output, "load_displacement.csv"))
+    history = read_rows(os.path.join(args.output, "newton_history.csv"))
 
     points = list(args.point)
     for path, column, qoi, sign in args.table:
@@ -152,21 +146,19 @@ def main():
               f"(required >= {minimum})")
         if abs(float(row["load_factor"]) - float(factor)) > 1e-9 or value < float(minimum):
             failures.append(f"{name} below {minimum}")
-    if args.min_correction_order is not None:
+    for minimum, orders, what, failure in (
+            (args.min_correction_order, correction_orders,
+             "order of the Newton corrections",
+             "no quadratic convergence of the corrections"),
+            (args.min_order, convergence_orders,
+             "Newton convergence order", "no quadratic convergence observed")):
+        if minimum is None:
+            continue
         checks += 1
-        best = max(correction_orders(history), default=0)
-        print(f"best observed order of the Newton corrections: {best:.2f} "
-              f"(required >= {args.min_correction_order})")
-        if best < args.min_correction_order:
-            failures.append("no quadratic convergence of the corrections")
-    if args.min_order is not None:
-        checks += 1
-        orders = convergence_orders(history)
-        best = max(orders, default=0)
-        print(f"best observed Newton convergence order: {best:.2f} "
-              f"(required >= {args.min_order})")
-        if best < args.min_order:
-            failures.append("no quadratic convergence observed")
+        best = max(orders(history), default=0)
+        print(f"best observed {what}: {best:.2f} (required >= {minimum})")
+        if best < minimum:
+            failures.append(failure)
     if args.max_iterations is not None:
         checks += 1
         worst = max(int(r["iterations"]) for r in rows)
@@ -176,8 +168,7 @@ def main():
     if args.max_total_iterations is not None:
         checks += 1
         total = sum(1 for r in history if float(r["correction_norm"]) != 0)
-        with open(os.path.join(args.output, "summary.json")) as f:
-            reported = json.load(f)["newton_corrections"]
+        reported = read_summary(args.output)["newton_corrections"]
         print(f"Newton corrections in the run, failed attempts included: "
               f"{total} (summary.json: {reported}; limit "
               f"{args.max_total_iterations})")
@@ -208,10 +199,7 @@ def main():
             failures.append("no limit point passed")
         if not growing:
             failures.append(f"|{args.monotone}| did not grow at every step")
-    for f in failures:
-        print("FAIL:", f)
-    print(f"{checks - len(failures)} passed, {len(failures)} failed")
-    sys.exit(1 if failures else 0)
+    exit_with(failures, checks)
 
 
 if __name__ == "__main__":

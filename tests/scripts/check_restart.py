@@ -41,7 +41,7 @@ import h5py
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from scene_runner import Checks, add_scene_arguments, exit_with  # noqa: E402
+from coshell_checks import Checks, add_scene_arguments  # noqa: E402
 
 VECTORS = ["values", "velocity", "acceleration", "generalized_force",
            "damping_force"]
@@ -50,10 +50,7 @@ ATTRIBUTES = ["format", "stage", "step", "time", "step_size",
               "pvd_entries", "last_written", "prm_file"]
 
 checks = Checks()
-
-
-def check(condition, message):
-    checks(message, condition)
+check = checks.that
 
 
 def run(args, directory, extra, **popen):
@@ -293,7 +290,7 @@ def main():
         check_interactive(args, a, final, timing)
     check_last_checkpoint(args, a, written[-1], timing)
     check_bad_files(args, written[len(written) // 2 - 1])
-    exit_with(checks.failures)
+    checks.exit()
 
 
 def check_last_checkpoint(args, reference, checkpoint, timing):

@@ -24,8 +24,8 @@ import sys
 
 import numpy as np
 
-from scene_runner import (Checks, add_scene_arguments, add_strip_arguments,
-                          exit_with, read_rows, run_scene)
+from coshell_checks import (Checks, add_scene_arguments, add_strip_arguments,
+                            read_rows, run_scene)
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "..", "doc",
                                 "scripts"))
@@ -156,7 +156,7 @@ def main():
     check(f"end: self-contact forces sum to zero ({total:.3g} N against "
           f"{largest:.3g} N on the most loaded vertex; VTU precision)",
           total <= 1e-6 * largest)
-    exit_with(check.failures)
+    check.exit()
 
 
 if __name__ == "__main__":

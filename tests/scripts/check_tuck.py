@@ -32,8 +32,9 @@ lens's mid-plane and move so that the strip between keeps its length.
   - the optic's centre stays within --optic-drift of where it started.
 
 With --figures DIR, checks that the VTU series holds each stage's last
-step and draws the tucked lens, the tuck's sequence and, with a bend, the
-bent lens and the whole sequence.
+step and draws (checker_figures.py) the tucked lens, the tuck's sequence
+and, with a bend, the bent lens and the whole sequence; without it
+nothing is drawn.
 The optic's radius, the haptic's thickness and the optic's thickness
 profile (optic_half_thickness) are tuck.prm's: a run that --sets them
 otherwise must pass them here too.
@@ -41,14 +42,9 @@ otherwise must pass them here too.
 import argparse
 import math
 import os
-import subprocess
-import sys
 
-from scene_runner import (add_scene_arguments, energy_balance, exit_with,
-                          run_contact_scene)
-
-SCRIPTS = os.path.dirname(os.path.abspath(__file__))
-RENDER = os.path.join(SCRIPTS, "..", "..", "doc", "scripts", "render_vtu.py")
+from coshell_checks import (add_scene_arguments, check_energy_balance,
+                            run_contact_scene)
 
 
 def parse_arguments():
@@ -170,58 +166,6 @@ def check_bent(checks, last, args):
            drift < args.optic_drift)
 
 
-def check_energy(checks, history, forces, args):
-    energies = energy_balance(history, forces)
-    supplied = sum(energies["obstacle_work"].values()) + \
-        energies["external_work"]
-    print("energy (N mm): the tools' work {:.5g}; strain {strain_energy:.5g},"
-          " kinetic {kinetic_energy:.3g}, drag and friction "
-          "{dissipated_energy:.5g}, barrier {contact_energy:.3g}; remainder "
-          "{remainder:.3g} ({:.3g} % of the work)".format(
-              supplied, 100 * energies["remainder"] / supplied, **energies))
-    checks(f"energy balance within {100 * args.energy_tolerance:g} % of the "
-           "work the tools supplied",
-           abs(energies["remainder"]) <= args.energy_tolerance * supplied)
-
-
-def draw(checks, args, tucked_at, end, bent):
-    os.makedirs(args.figures, exist_ok=True)
-    pvd = os.path.join(args.output, "solution.pvd")
-    common = [sys.executable, RENDER, "--pvd", pvd, "--fit", "shell",
-              "--obstacle-alpha", "0.25", "--no-axes"]
-
-    def picture(time, name, title, *extra):
-        # One time drawn as a one-picture montage: the file's name is fixed.
-        return subprocess.run(common + [
-            "--times", str(time), "--view", "35", "-60", "--edges",
-            *extra, "--out", os.path.join(args.figures, name),
-            "--montage", os.path.join(args.figures, name + ".png"),
-            "--title", title.format(time)]).returncode == 0
-
-    drawn = [picture(tucked_at, "tucked_lens",
-                     "haptics tucked onto the optic, t = {:.3g} s"),
-             picture(tucked_at, "tucked_lens_strain",
-                     "surface strain of the tucked lens, t = {:.3g} s",
-                     "--color-by", "surface_strain")]
-    if bent:
-        drawn.append(picture(end, "bent_lens", "the optic bent around the "
-                             "tucked haptics, t = {:.3g} s"))
-        drawn.append(picture(end, "bent_lens_end_on", "the bent lens seen "
-                             "along its fold, t = {:.3g} s",
-                             "--view", "0", "-90"))
-        times = [tucked_at / 3, 2 * tucked_at / 3, tucked_at,
-                 (tucked_at + end) / 2, end]
-    else:
-        times = [end * k / 5 for k in range(1, 6)]
-    drawn.append(subprocess.run(common + [
-        "--times", *map(str, times), "--view", "35", "-60",
-        "--out", os.path.join(args.figures, "tuck"),
-        "--montage", os.path.join(args.figures, "tuck_sequence.png"),
-        "--montage-columns", "5"]).returncode == 0)
-    checks("the tucked lens, its strain, the sequence and any bent lens are "
-           "drawn", all(drawn))
-
-
 def check_stage_ends_written(checks, args, history):
     """The VTU series holds each stage's last step (Output/Steps between
     outputs writes it whatever the stride): the tucked lens is drawn at
@@ -250,12 +194,16 @@ def main():
     if bent:
         check_tucked(checks, history[-1], args, bent=True)
         check_bent(checks, history[-1], args)
-    check_energy(checks, history, forces, args)
+    check_energy_balance(checks, history, forces, args.energy_tolerance,
+                         "the tools")
     if args.figures:
         check_stage_ends_written(checks, args, history)
-        draw(checks, args, float(tucked["time"]), float(history[-1]["time"]),
-             bent)
-    exit_with(checks.failures)
+        import checker_figures
+        checks("the tucked lens, its strain, the sequence and any bent lens "
+               "are drawn", checker_figures.tuck_pictures(
+                   args, float(tucked["time"]), float(history[-1]["time"]),
+                   bent))
+    checks.exit()
 
 
 if __name__ == "__main__":

@@ -10,15 +10,12 @@ With --uniform-strains it also checks every cell's membrane, bending and
 surface strain against values the caller derives by hand (a state of
 uniform strain, where the elements are exact).""" 
 import argparse
-import json
 import os
-import subprocess
 import sys
 import xml.etree.ElementTree as ET
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)),
-                                "..", "..", "doc", "scripts"))
-import render_vtu  # noqa: E402
+from coshell_checks import (add_scene_arguments, exit_with, read_summary,
+                            run_scene)
 
 POINT_FIELDS = {"displacement": 3, "rotation": 3}
 STRAINS = ["membrane_strain", "bending_strain", "surface_strain"]
@@ -29,6 +26,9 @@ CELL_FIELDS = [f"{s}_{c}" for s in "NM" for c in ("xx", "yy", "zz", "xy", "yz", 
 def uniform_strain_problems(path, expected, tolerance):
     """Each strain field against its expected value in every cell, to a
     relative tolerance."""
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(
+        __file__)), "..", "..", "doc", "scripts"))
+    import render_vtu
     mesh = render_vtu.read_vtu(path)
     problems = []
     for name, value in zip(STRAINS, expected):
@@ -44,22 +44,14 @@ def uniform_strain_problems(path, expected, tolerance):
 
 def main():
     parser = argparse.ArgumentParser()
-    parser.add_argument("--coshell", required=True)
-    parser.add_argument("--prm", required=True)
-    parser.add_argument("--output", required=True)
+    add_scene_arguments(parser)
     parser.add_argument("--level", type=int, default=1)
-    parser.add_argument("--set", action="append", default=[],
-                        help="a parameter assignment passed to coshell")
     parser.add_argument("--uniform-strains", type=float, nargs=4,
                         metavar=("MEMBRANE", "BENDING", "SURFACE", "RTOL"))
     args = parser.parse_args()
-    command = [args.coshell, args.prm, "--output", args.output,
-               "--set", f"Mesh/Refinement levels={args.level}"]
-    for assignment in args.set:
-        command += ["--set", assignment]
-    subprocess.run(command, check=True)
-    with open(os.path.join(args.output, "summary.json")) as f:
-        summary = json.load(f)
+    run_scene(args.coshell, args.prm, args.output,
+              [f"Mesh/Refinement levels={args.level}"] + args.set)
+    summary = read_summary(args.output)
 
     problems = []
     pvd = ET.parse(os.path.join(args.output, "solution.pvd"))
@@ -86,13 +78,8 @@ def main():
             args.uniform_strains[:3], args.uniform_strains[3])
     print("point fields:", point_arrays)
     print("cell fields:", sorted(cell_arrays))
-    for p in problems:
-        print("FAIL:", p)
-    checks = len(POINT_FIELDS) + len(CELL_FIELDS) + 2 + \
-        (len(STRAINS) if args.uniform_strains else 0)
-    print(f"{checks - len(problems)} passed, "
-          f"{len(problems)} failed")
-    sys.exit(1 if problems else 0)
+    exit_with(problems, len(POINT_FIELDS) + len(CELL_FIELDS) + 2 +
+              (len(STRAINS) if args.uniform_strains else 0))
 
 
 if __name__ == "__main__":

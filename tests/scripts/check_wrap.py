@@ -22,8 +22,8 @@ import math
 import os
 import sys
 
-from scene_runner import (Checks, add_scene_arguments, add_strip_arguments,
-                          exit_with, read_rows, run_scene)
+from coshell_checks import (Checks, add_scene_arguments, add_strip_arguments,
+                            read_rows, run_scene)
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "..", "doc",
                                 "scripts"))
@@ -114,7 +114,7 @@ def main():
             check(what + ", within 1 %", max(abs(s) for s in spread) <= 0.01)
         else:  # above M* the strip lifts between clamp and tip
             print("info " + what)
-    exit_with(check.failures)
+    check.exit()
 
 
 if __name__ == "__main__":

@@ -19,10 +19,9 @@ lies below it for q = 1..5.
 """
 import argparse
 import csv
-import json
 import os
-import subprocess
-import sys
+
+from coshell_checks import exit_with, read_rows, read_summary, run_scene
 
 PAPER_Z_MAX = {1: 0.1218, 2: 0.2475, 3: 0.3747, 4: 0.505, 5: 0.637}
 REFERENCE_PER_Q = 0.126532
@@ -30,40 +29,36 @@ ELEMENTS = ["dkt", "przemieniecki"]
 
 
 def centre_deflection(args, element, q):
-    output = os.path.join(args.output, f"{element}-q{q}")
-    command = [args.coshell, args.prm, "--output", output,
-               "--set", f"Mesh/Refinement levels={args.level}",
-               "--set", "Element/Membrane element=off",
-               "--set", f"Element/Bending element={element}",
-               "--set", f"Loads/Pressure={q}",
-               "--set", f"Quantities of interest/Reference values="
-                        f"center_deflection: {REFERENCE_PER_Q * q}",
-               "--set", "Output/Write VTU=false"]
-    subprocess.run(command, check=True, stdout=subprocess.DEVNULL)
-    with open(os.path.join(output, "summary.json")) as f:
-        return json.load(f)["qoi"]["center_deflection"]
+    output = run_scene(args.coshell, args.prm,
+                       os.path.join(args.output, f"{element}-q{q}"), [
+                           f"Mesh/Refinement levels={args.level}",
+                           "Element/Membrane element=off",
+                           f"Element/Bending element={element}",
+                           f"Loads/Pressure={q}",
+                           "Quantities of interest/Reference values="
+                           f"center_deflection: {REFERENCE_PER_Q * q}",
+                           "Output/Write VTU=false"], quiet=True)
+    return read_summary(output)["qoi"]["center_deflection"]
 
 
 def corotational_deflections(args):
     """Centre deflection at q = 0.01 and q = 1..5 from one co-rotational run
     (load factor q / 5)."""
-    output = os.path.join(args.output, "corotational")
     stops = [0.01] + sorted(PAPER_Z_MAX)
     curve = ", ".join(f"{q / 5} {REFERENCE_PER_Q * q}" for q in stops)
-    command = [args.coshell, args.prm, "--output", output,
-               "--set", f"Mesh/Refinement levels={args.corotational_level}",
-               "--set", "Element/Formulation=corotational",
-               "--set", "Analysis/Type=nonlinear static",
-               "--set", "Element/Membrane element=cst",
-               "--set", "Element/Bending element=dkt",
-               "--set", "Loads/Pressure=5",
-               "--set", "Quantities of interest/Reference values=",
-               "--set", f"Quantities of interest/Reference curves="
-                        f"center_deflection: {curve}",
-               "--set", "Output/Write VTU=false"]
-    subprocess.run(command, check=True, stdout=subprocess.DEVNULL)
-    with open(os.path.join(output, "load_displacement.csv")) as f:
-        rows = list(csv.DictReader(f))
+    output = run_scene(args.coshell, args.prm,
+                       os.path.join(args.output, "corotational"), [
+                           f"Mesh/Refinement levels={args.corotational_level}",
+                           "Element/Formulation=corotational",
+                           "Analysis/Type=nonlinear static",
+                           "Element/Membrane element=cst",
+                           "Element/Bending element=dkt",
+                           "Loads/Pressure=5",
+                           "Quantities of interest/Reference values=",
+                           "Quantities of interest/Reference curves="
+                           f"center_deflection: {curve}",
+                           "Output/Write VTU=false"], quiet=True)
+    rows = read_rows(os.path.join(output, "load_displacement.csv"))
     return {q: next(float(r["center_deflection"]) for r in rows
                     if abs(float(r["load_factor"]) - q / 5) < 1e-9)
             for q in stops}
@@ -142,10 +137,7 @@ def main():
     if corotational:
         checks += 1 + len(rows)
         failures += check_corotational(rows, corotational[0.01])
-    for failure in failures:
-        print("FAIL:", failure)
-    print(f"{checks - len(failures)} passed, {len(failures)} failed")
-    sys.exit(1 if failures else 0)
+    exit_with(failures, checks)
 
 
 if __name__ == "__main__":

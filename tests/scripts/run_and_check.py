@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Runs coshell on a scene and checks its summary.json / convergence.csv
 against reference values given on this command line (not in the prm), so
-that a test states its own independent reference.
+that a test states its own independent reference. Given no check, it
+fails without running.
 
   run_and_check.py --coshell BIN --prm FILE --output DIR [--set A/B=v ...]
       [--value QOI REFERENCE RTOL]   |qoi - reference| <= rtol |reference|
@@ -24,37 +25,24 @@ that a test states its own independent reference.
                                      than that run's
 """
 import argparse
-import csv
-import json
 import math
 import os
-import shutil
-import subprocess
 import sys
 
+from coshell_checks import (add_scene_arguments, exit_with, read_rows,
+                            read_summary, run_scene)
 from richardson import richardson
-from scene_runner import add_scene_arguments
 
 
 def run_coshell(args, output=None, extra_settings=()):
-    output = output or args.output
-    if os.path.isdir(output):
-        shutil.rmtree(output)
-    command = [args.coshell, args.prm, "--output", output]
-    for assignment in list(args.set) + list(extra_settings):
-        command += ["--set", assignment]
-    print("running:", " ".join(repr(c) for c in command), flush=True)
-    result = subprocess.run(command)
-    if result.returncode != 0:
-        sys.exit(f"FAIL: coshell exited with status {result.returncode}")
-    with open(os.path.join(output, "summary.json")) as f:
-        return json.load(f)
+    output = run_scene(args.coshell, args.prm, output or args.output,
+                       list(args.set) + list(extra_settings))
+    return read_summary(output)
 
 
 def level_errors(output, qoi, reference):
-    with open(os.path.join(output, "convergence.csv")) as f:
-        return [abs(float(row[qoi]) - reference) / abs(reference)
-                for row in csv.DictReader(f)]
+    return [abs(float(row[qoi]) - reference) / abs(reference)
+            for row in read_rows(os.path.join(output, "convergence.csv"))]
 
 
 def check_no_coarser(args, setting, qoi, reference):
@@ -93,8 +81,7 @@ def check_values(summary, checks, within):
 
 
 def check_rate(output, low, high):
-    with open(os.path.join(output, "convergence.csv")) as f:
-        rows = list(csv.DictReader(f))
+    rows = read_rows(os.path.join(output, "convergence.csv"))
     print("convergence.csv:")
     for row in rows:
         print("  " + ", ".join(f"{k}={v}" for k, v in row.items()))
@@ -111,8 +98,7 @@ def check_rate(output, low, high):
 def check_self_order(output, minimum):
     """Observed order and Richardson-extrapolated value from the three
     finest levels of convergence.csv (h halves between levels)."""
-    with open(os.path.join(output, "convergence.csv")) as f:
-        rows = list(csv.DictReader(f))
+    rows = read_rows(os.path.join(output, "convergence.csv"))
     name = list(rows[0])[4]
     q1, q2, q3 = (float(r[name]) for r in rows[-3:])
     order, extrapolated = richardson(q1, q2, q3)
@@ -150,6 +136,17 @@ def main():
     parser.add_argument("--no-coarser-than", nargs=3, action="append",
                         default=[], metavar=("SETTING", "QOI", "REFERENCE"))
     args = parser.parse_args()
+    checks = (len(args.value) + len(args.error_above) +
+              len(args.no_coarser_than) +
+              sum(x is not None for x in (args.min_self_order, args.min_rate,
+                                          args.max_rate, args.min_iterations,
+                                          args.max_iterations)))
+    if checks == 0:
+        # A run that checks nothing would pass whatever coshell computed.
+        print("0 passed, 1 failed")
+        sys.exit("FAIL: run_and_check.py was given no check (--value, "
+                 "--error-above, --min-rate, --max-rate, --min-self-order, "
+                 "--no-coarser-than, --min-iterations or --max-iterations)")
 
     summary = run_coshell(args)
     failures = check_values(summary, args.value, True)
@@ -163,12 +160,7 @@ def main():
     iteration_bounds = (args.min_iterations, args.max_iterations)
     if iteration_bounds != (None, None):
         failures += check_iterations(summary, *iteration_bounds)
-    checks = (len(args.value) + len(args.error_above) +
-              len(args.no_coarser_than) +
-              sum(x is not None for x in (args.min_self_order, args.min_rate, args.max_rate,
-                                          args.min_iterations, args.max_iterations)))
-    print(f"{checks - len(failures)} passed, {len(failures)} failed")
-    sys.exit(1 if failures else 0)
+    exit_with(failures, checks)
 
 
 if __name__ == "__main__":

@@ -11,30 +11,20 @@ the least-squares slope of log e against log h, which must be >= P (the
 orders of consecutive pairs are printed too). Prints 'N passed, M failed'.
 """
 import argparse
-import csv
 import math
 import os
-import shutil
-import subprocess
-import sys
 
-from scene_runner import add_scene_arguments
+from coshell_checks import Checks, add_scene_arguments, read_rows, run_scene
 
 
 def final_values(args, dt, qois):
-    output = os.path.join(args.output, f"dt_{dt:g}")
-    if os.path.isdir(output):
-        shutil.rmtree(output)
-    command = [args.coshell, args.prm, "--output", output,
-               "--set", f"Time integration/Time step={dt!r}",
-               "--set", f"Time integration/Maximum time step={dt!r}",
-               "--set", f"Time integration/End time={args.end!r}"]
-    for assignment in args.set:
-        command += ["--set", assignment]
-    if subprocess.run(command, stdout=subprocess.DEVNULL).returncode != 0:
-        sys.exit(f"FAIL: coshell failed with dt = {dt}\n0 passed, 1 failed")
-    with open(os.path.join(output, "time_history.csv")) as f:
-        last = list(csv.DictReader(f))[-1]
+    output = run_scene(args.coshell, args.prm,
+                       os.path.join(args.output, f"dt_{dt:g}"),
+                       [f"Time integration/Time step={dt!r}",
+                        f"Time integration/Maximum time step={dt!r}",
+                        f"Time integration/End time={args.end!r}"] + args.set,
+                       quiet=True)
+    last = read_rows(os.path.join(output, "time_history.csv"))[-1]
     return [float(last[q]) for q in qois]
 
 
@@ -67,11 +57,10 @@ def main():
     mx, my = sum(x) / len(x), sum(y) / len(y)
     slope = (sum((a - mx) * (b - my) for a, b in zip(x, y)) /
              sum((a - mx) ** 2 for a in x))
-    ok = slope >= args.min_order
-    print(("ok   " if ok else "FAIL ") +
-          f"observed order (least squares) {slope:.3f} (required >= {args.min_order})")
-    print(f"{int(ok)} passed, {int(not ok)} failed")
-    sys.exit(0 if ok else 1)
+    checks = Checks()
+    checks(f"observed order (least squares) {slope:.3f} (required >= "
+           f"{args.min_order})", slope >= args.min_order)
+    checks.exit()
 
 
 if __name__ == "__main__":
