@@ -53,9 +53,9 @@ coshell_contact_test(contact.plate_on_plane.vertex_on_edge contact/plate_on_plan
 # the penalty's cubic start (x < eps = h/100): k x^2 / (2 eps) = p, so
 # x = sqrt(2 eps p / k) = 1.7157e-4 mm with k = E/h = 2 N/mm^3.
 # That closed form counts the plane's pressure on vertex-triangle pairs
-# alone; edge-edge pairs (on by default since 2026-11-26) add to it where
-# the plate's edges cross the plane's (-1.757e-4 mm, 2.4 % deeper; the
-# reaction is the weight either way), so the test keeps them off.
+# alone; edge-edge pairs (on by default) add to it where the plate's
+# edges cross the plane's (-1.757e-4 mm, 2.4 % deeper; the reaction is
+# the weight either way), so the test keeps them off.
 coshell_contact_test(contact.plate_on_plane.barrier_dynamic contact/plate_on_plane.prm
   ARGS --set "Analysis/Type=dynamic"
   --reaction fz -0.0005886 1e-6 --gap-nonnegative --gap-below 0.05)
@@ -125,11 +125,10 @@ coshell_contact_test(contact.incline_friction.sticking_stiction_floor ${incline}
   ARGS --set "Contact/Stiction displacement=1e-4"
   --set "Loads/Gravity=1703.489, 0, -9660.965"
   --change centre_ux 0.015 0.04 2.5e-3 --gap-nonnegative)
-# The same two with edge-edge pairs, which now carry the obstacle's
-# friction too: a flat plate on a flat plane feels both kinds of pair
-# (IPC counts both), and when the edge pairs were frictionless part of
-# the normal force escaped friction (sliding 2002 mm/s^2, 32 % fast, and
-# no sticking: 0.22 mm of creep).
+# The same two with edge-edge pairs, which carry the obstacle's friction
+# too: a flat plate on a flat plane feels both kinds of pair (IPC counts
+# both); frictionless edge pairs would let part of the normal force escape
+# friction (sliding 32 % fast, and no sticking; doc/validation.md).
 coshell_contact_test(contact.incline_friction.sliding_edge_edge ${incline}
   ARGS --set "Contact/Edge-edge pairs=true"
   --slope centre_ux 0.01 0.04 1511.54 0.02 --gap-nonnegative)
@@ -165,12 +164,13 @@ coshell_contact_test(contact.funnel.barrier ${funnel}
   --set "Contact/Obstacle 2/Force file=plunger_tilted.csv"
   --set "Contact/Obstacle 2/Force direction=-2, 0, 1"
   --force-file plunger_tilted.csv 2 -2 0 1 plunger_displacement)
-# With friction (mu = 0.1 on funnel and plunger; converges since the
-# edge-edge pairs, not before) and the energy line search: the same
-# guarantee, the plunger pushes, and the energy balance closes with
-# friction's dissipation counted (the funnel, fixed, does no work). (Before the line search's trial
-# evaluations put the obstacles back, a trial could advance the plunger
-# against a shell shape that was then undone: gaps of -6e-3 mm.)
+# With friction (mu = 0.1 on funnel and plunger; it converges with the
+# edge-edge pairs) and the energy line search: the same guarantee, the
+# plunger pushes, and the energy balance closes with friction's
+# dissipation counted (the funnel, fixed, does no work). The line
+# search's trial evaluations put the obstacles back: a trial that kept
+# the plunger advanced against an undone shell shape would open gaps of
+# -6e-3 mm.
 coshell_contact_test(contact.funnel.barrier_friction ${funnel}
   ARGS --set "Output/Write VTU=false"
   --set "Contact/Obstacle 1/Friction coefficient=0.1"
@@ -229,7 +229,7 @@ set_tests_properties(contact.strip_on_cylinder PROPERTIES LABELS contact)
 # and then slid, Newton stalls at a relative residual of 1e-7 and the
 # step size collapses, with a clear error: see doc/validation.md.)
 # The squeeze converges with vertex-triangle pairs alone. With edge-edge
-# pairs (the default since 2026-11-26) Newton stalls at load factor 0.996
+# pairs (the default) Newton stalls at load factor 0.996
 # (relative residual 1.0 at a strip vertex under the rod) and the run
 # stops with a clear error; ..._edge_edge_stalls asserts that error, so
 # that a fix shows.
@@ -350,10 +350,10 @@ coshell_bad_input_test(contact_penalty_step_filter_of_one
 # A penalty too soft for the step filter: at 1e-6 N/mm^3 the rising plane
 # can press the plate no harder than 1e-6 x 0.025 N/mm^2 within the
 # filter's (1 - 0.9) h/2, far below the plate's weight (5.9e-6 N/mm^2), so
-# the plane cannot reach its position. Newton fails the step; so, since
-# 2026-11-26, does the linearized scheme when an obstacle's move was
-# blocked (before, it accepted the frozen steps and wrote results as if the plane
-# had risen). Both name the obstacle and the two parameters that cure it.
+# the plane cannot reach its position. Newton fails the step; so does the
+# linearized scheme when an obstacle's move is blocked (rather than accept
+# frozen steps and write results as if the plane had risen). Both name
+# the obstacle and the two parameters that cure it.
 set(soft_penalty ${plane_scene} ${rising_plane}
     --set "Contact/Penalty step filter=0.9"
     --set "Contact/Penalty stiffness=1e-6")
@@ -493,9 +493,9 @@ set_tests_properties(contact.interactive_input_slope PROPERTIES LABELS contact)
 # the correction), which the step's linear system does not hold; on this
 # step it is 1.8e-3 of the slope. The force is smooth there: its
 # one-sided differences part by 2e-3 at delta 1e-6, 2e-2 at 1e-5 and 0.2
-# at 1e-4, in proportion to delta. Asserted within 5e-3.
-# Until 2026-11-29 the step reported its force at its start and no finite
-# difference checked the slope better than its order of magnitude.
+# at 1e-4, in proportion to delta. Asserted within 5e-3. (The force at
+# the step's start would match no finite difference better than the
+# slope's order of magnitude.)
 add_test(NAME contact.interactive_input_slope.linearized
   COMMAND ${COSHELL_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_input_slope.py
           --coshell $<TARGET_FILE:coshell> --prm ${plane_scene}

@@ -193,9 +193,9 @@ coshell_dynamics_test(stages.strip_roll_up_linearized_prescribed_rotation
 # a prescribed end rotation springs open in a damped dynamic stage and
 # comes to rest flat. Nothing works on it after the release, so its energy
 # may only fall (1e-9 for round-off; measured: it falls at every step).
-# Without the scene's energy guard one step converged to a spurious state
-# at t = 1.0989 s and the energy jumped from 158 to 13 139: the run then
-# took 8 659 steps (6 min in the suite); with it, 757 steps and 30 s.
+# Without the scene's energy guard one step converges to a spurious state
+# at t = 1.0989 s and the energy jumps from 158 to 13 139, and the run
+# takes about ten times as many steps (doc/validation.md).
 coshell_dynamics_test(stages.strip_roll_up_then_release
   dynamics/strip_roll_up.prm ARGS --stage 2
   --final tip_u 0 1e-3 --final tip_w 0 1e-3 --no-energy-growth 1e-9)
@@ -290,8 +290,7 @@ add_test(NAME restart.free_flying_plate.thinned_history
 # The released strip's first 0.25 s with a checkpoint every 0.0625 s,
 # through the step the energy guard rejects (t = 1.0989 s): the restarted
 # runs rebuild the guard from the checkpoint's state and judge the steps as
-# the uninterrupted run does. Until 2026-11-26 the test ran the release's
-# first second, 6 400 steps a run without the guard, 650 s of the suite.
+# the uninterrupted run does.
 add_test(NAME restart.strip_roll_up_then_release
   COMMAND ${COSHELL_PYTHON} ${CHECK_RESTART} --coshell $<TARGET_FILE:coshell>
           --prm ${COSHELL_PRM}/dynamics/strip_roll_up.prm
@@ -342,9 +341,8 @@ set_tests_properties(dynamics.interactive_across_stages PROPERTIES LABELS dynami
 # 0.2 s more under the same load). An equilibrium is a state at rest, so
 # the last stage must stay at rest: over its steps tip_w moves by at most
 # 1e-6 of itself and the kinetic energy changes by at most 1e-15 (1e-9 of
-# the first stage's 1.05e-6). Before the static stage left the shell at
-# rest, the first stage's velocities carried over it and tip_w moved by
-# 34 %.
+# the first stage's 1.05e-6). Velocities carried over the static stage
+# would move tip_w by 34 %.
 set(dynamic_static_dynamic
     --set "Stage 1/Analysis type=dynamic" --set "Stage 1/Duration=0.2"
     --set "Stage 2/Analysis type=nonlinear static" --set "Stage 2/Duration=1"

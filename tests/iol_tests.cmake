@@ -50,8 +50,7 @@ coshell_iol_test(iol.compression_iso11979 check_compression.py
                  --plot ${CMAKE_CURRENT_BINARY_DIR}/output/iol.compression_iso11979/compression.png)
 # The same with Linear solver/Reuse factorization: the same assertions,
 # and some solves used kept factors (UMFPACK's: the consistent tangent is
-# not symmetric). A solver that ignored the request, as CHOLMOD did until
-# 2026-11-27, would fail here.
+# not symmetric). A solver that ignored the request would fail here.
 coshell_iol_test(iol.compression_iso11979.kept_factors check_compression.py
                  compression_iso11979.prm --set ${no_vtu}
                  --set "Linear solver/Reuse factorization=true"
@@ -59,16 +58,18 @@ coshell_iol_test(iol.compression_iso11979.kept_factors check_compression.py
 # The modified-L lens (lens.geo haptic_type = 1) in the same clamps: no
 # interpenetration, the clamp forces balance within 1 % (measured 0.06 %)
 # and end finite and positive. Its arms, loaded at their farthest points,
-# turn the lens (41 degrees) and it buckles out of its plane: the force
-# peaks (0.935 mN) and first drops at D = 10.93 mm (0.953 mN and 10.88 mm
-# on 2026-11-26), then stays near 0.8-0.93 mN down to 10 mm, with the
-# optic vaulted 1.48 mm (doc/validation.md).
-# That the buckle starts between 10.95 and 10.80 mm is a regression guard
-# on this run, not validation: there is no measured curve to compare.
+# turn the lens and it buckles out of its plane: the force peaks, first
+# drops and then stays near its peak down to 10 mm, with the optic vaulted
+# (doc/validation.md gives the values).
+# Regression guard (label regression): that the buckle starts between
+# 10.95 and 10.80 mm pins this code's own earlier run, not a validation:
+# there is no measured curve to compare.
 coshell_iol_test(iol.compression_iso11979.modified_l check_compression.py
                  compression_iso11979.prm --set ${no_vtu}
                  --set "Mesh/Gmsh parameters=haptic_type = 1"
                  --buckle-between 10.95 10.80)
+set_tests_properties(iol.compression_iso11979.modified_l
+  PROPERTIES LABELS "iol;regression")
 
 # The lens on the test chamber's floor instead of its optic's rotations
 # held: a rigid plane (meshes/contact/plane.geo) 0.02 mm under the optic's
@@ -137,7 +138,7 @@ coshell_iol_test(iol.interactive_injection.push check_interactive.py
 # difference of three sessions whose last input differs by +-1e-6 mm.
 # With the consistent tangent the slope is exact (measured 1.1e-5, the
 # six printed digits); the scene's symmetric tangent leaves 4.3e-4, which
-# doc/validation.md reports. Labelled long: three folds, about a minute.
+# doc/validation.md reports. Labelled long: it runs three folds.
 coshell_iol_test(iol.interactive_plunger_slope check_input_slope.py
                  injection.prm --obstacles 6 --driven 2
                  --set "Contact/Obstacle 2/Translation=plunger_start$<SEMICOLON> 0$<SEMICOLON> axis_height"
@@ -155,14 +156,11 @@ set_tests_properties(iol.interactive_plunger_slope PROPERTIES LABELS "iol;long")
 # that of the converged backward Euler at the same step (the floor makes
 # the converged force depend on the step: 0.535, 0.473 and 0.427 mN at 1,
 # 0.5 and 0.25 ms), its error at least halving with each halving of the
-# step. Measured 2026-11-29: 199 %, 47 % and 18 % (the force of the step's
-# start, reported until then: 2720 %, 355 % and 104 %). Far from that
-# force at the steps a haptic loop affords: the default lens's numbers are
-# doc/performance.md's "The linearized step's force at its end". The mode
-# that doc recommends instead, Newton stopped once a correction is at most
-# 1 um, must stay within 1 % of the reference at 1 ms (measured +0.09 %,
-# 1.2 corrections a step against 2.15; the default lens -0.31 %); 41 s
-# in all.
+# step. Its error is far from small at the steps a haptic loop affords
+# (doc/validation.md; the default lens's numbers are in doc/performance.md,
+# "The linearized step's force at its end"). The mode that doc recommends
+# instead, Newton stopped once a correction is at most 1 um, must stay
+# within 1 % of the reference at 1 ms.
 coshell_iol_test(iol.push.linearized_consistency
                  check_linearized_consistency.py injection.prm
                  --set ${coarse_lens}
@@ -175,8 +173,10 @@ coshell_iol_test(iol.push.linearized_consistency
 # (tip_ux = -0.004641232, tip_uy = 0.003039388 mm). A consistency check of
 # our two kinematics, not an independent reference: the difference falls
 # at first order in the load (0.94 % at 1e-3 mN, 0.094 % here).
+# Regression guard (label regression): the reference values are this
+# code's own linear solution, written down from an earlier run.
 coshell_scene_test(iol.haptic_compression.corotational_small_load_limit
-  iol/haptic_compression.prm LABELS iol
+  iol/haptic_compression.prm LABELS iol regression
   ARGS --set ${no_vtu} --set "Mesh/Refinement levels=1"
        --set "Element/Formulation=corotational"
        --set "Analysis/Type=nonlinear static"
@@ -197,8 +197,8 @@ coshell_scene_test(iol.haptic_compression.corotational_small_load_limit
 # kinetic energy, the drag's and friction's dissipation and the barrier's
 # energy within 0.1 %, and the VTU series holds each stage's last step.
 # Draws the tucked and the bent lens and the sequence
-# into build/tests/output/iol.tuck/png/; about 2 min. The measured values
-# are in doc/validation.md.
+# into build/tests/output/iol.tuck/png/. The measured values are in
+# doc/validation.md.
 coshell_iol_test(iol.tuck check_tuck.py tuck.prm
                  --figures ${CMAKE_CURRENT_BINARY_DIR}/output/iol.tuck/png)
 
@@ -349,29 +349,22 @@ coshell_iol_test(iol.injection.fold.junction_refined check_injection.py
 # 3 % of its 6 mm with co-rotation (folding by bending; measured 1.9 %)
 # and has grown by at least 30 % with linear kinematics (measured 76 %:
 # each rotation taken as a stretch). The linear run goes on failing: it
-# stalls at t = 0.964 s (step below 1e-6 s after 300 steps and 19 min;
-# doc/validation.md). Frictionless, as the kinematics alone are compared:
+# stalls at t = 0.964 s (step below 1e-6 s; doc/validation.md). Frictionless, as the kinematics alone are compared:
 # with the scene's friction the wings hold the linear lens's rim, and its
 # line grows by 11 % only (co-rotational 1.86 %). Draws both into
 # build/tests/output/iol.fold.corotational_vs_linear/fold_kinematics.png.
 coshell_iol_test(iol.fold.corotational_vs_linear check_fold_kinematics.py
                  injection.prm --set ${coarse_lens} ${frictionless} --until 0.6
                  --figure ${CMAKE_CURRENT_BINARY_DIR}/output/iol.fold.corotational_vs_linear/fold_kinematics.png)
-# The whole injection on the coarse lens, in the default suite since
-# 2026-11-28 (labelled long while it took 3 to 5 min; 46 to 48 s then):
-# fold, push, exit, deployment, with the scene's friction. Every check of
-# check_injection.py: the fold's gaps, the folded optic in the nozzle, the
-# lens out past the tip, the optic's shape at rest in the bag, a finite
-# positive plunger force, and the energy balance with friction's
-# dissipation within 2 % (with friction on the obstacles but not on the
-# rod: 0.13 % remainder, 709 steps, plunger force at most 54.2 mN, 3.3 min
-# on 2026-11-25). Since 2026-11-29 the scene ends with stage 4, 90 s for
-# the lens to settle, and the checker asserts the optic at rest (over the
-# last 2 s its decentration moved 3e-7 mm and its tilt 3e-4 degrees; at
-# the end of stage 3 it was still turning by 2 degrees/s): decentration
-# 0.193 mm, tilt 0.55 degrees, against 0.49 mm and 21 degrees at the end
-# of the deploy stage. 74 s alone. Draws the deployment sequence, each
-# panel named by its stage.
+# The whole injection on the coarse lens, in the default suite: fold,
+# push, exit, deployment and settling (stage 4, 90 s for the lens to come
+# to rest), with the scene's friction. Every check of check_injection.py:
+# the fold's gaps, the folded optic in the nozzle, the lens out past the
+# tip, the optic's shape at rest in the bag, the optic at rest (over the
+# last 2 s; at the end of stage 3 it is still turning by 2 degrees/s), a
+# finite positive plunger force, and the energy balance with friction's
+# dissipation within 2 %. Draws the deployment sequence, each panel named
+# by its stage. The measured values are in doc/validation.md.
 coshell_iol_test(iol.injection check_injection.py injection.prm
                  --set ${coarse_lens}
                  --figures ${CMAKE_CURRENT_BINARY_DIR}/output/iol.injection/png)
@@ -380,12 +373,8 @@ coshell_iol_test(iol.injection check_injection.py injection.prm
 # asserted. The design sits at 2 %: held at 10 mm its arms bend the optic
 # by about 2 % wherever they are held (1.72 % between the ISO clamps,
 # 2.27 % in the bag at the end of the deploy stage, 1.91 % once settled;
-# doc/validation.md, "The modified-L lens in the cartridge"). Measured
-# 2026-11-29 before the settling stage: 880 steps, smallest gap 1.1e-5
-# mm, optic 2.63 mm across in the nozzle, plunger force at most 43.6 mN,
-# energy remainder 0.24 %; 75 s. With the 90 s of settling: at rest
-# decentration 0.13 mm, tilt 4.5 degrees, the optic vaulted 1.43 mm back;
-# 139 s beside iol.injection on the other core.
+# doc/validation.md, "The modified-L lens in the cartridge", which gives
+# the measured values).
 coshell_iol_test(iol.injection.modified_l check_injection.py injection.prm
                  --set ${coarse_modified_l}
                  --shape-not-asserted "the modified-L design bends its optic by about 2 % wherever it is held at 10 mm (1.72 % between the ISO clamps, 1.91 % at rest in the bag): a margin too thin to assert")
@@ -396,12 +385,9 @@ coshell_iol_test(iol.injection.modified_l check_injection.py injection.prm
 # still leaves less room beside it in the 4 mm chamber (0.4 mm) than the
 # haptic's thickness (0.45 mm), so the trailing haptic stays ahead of it;
 # at 3.0 mm it slides beside the plunger and is pinched where the taper
-# begins (doc/validation.md, "How narrow a nozzle the lens passes").
-# Measured 2026-11-29 (stages 1 to 3): 660 steps, optic rim-to-rim at
-# most 2.29 mm in the nozzle, plunger force at most 81.8 mN (54.8 mN over
-# 0.5 mm of travel, 36.1 through 3.5 mm).
-# 124 s beside two other runs (long: iol.injection.sleeve_plunger below
-# runs a narrower bore in the default suite).
+# begins (doc/validation.md, "How narrow a nozzle the lens passes", which
+# gives the measured values). Labelled long: iol.injection.sleeve_plunger
+# below runs a narrower bore in the default suite.
 coshell_iol_test(iol.injection.narrow_nozzle check_injection.py injection.prm
                  --set ${coarse_lens}
                  --set "Constants/Changes=nozzle_radius = 1.65")
@@ -412,11 +398,8 @@ set_tests_properties(iol.injection.narrow_nozzle PROPERTIES LABELS "iol;long")
 # within the 2.8 mm bore. The sleeve fills the 4 mm chamber and stops in
 # the taper (sleeve_stop, 9.75 mm here) while the 2.7 mm plunger goes on;
 # without it the trailing haptic jams beside the plunger from 3.1 mm down
-# (doc/validation.md, "How narrow a nozzle the lens passes"). Also checks
-# the sleeve's sleeve_force.csv. Measured 2026-11-29: the optic's rims
-# 1.17 mm apart at most in the nozzle, the plunger's force at most 92.3
-# mN and the sleeve's 126.7 mN, energy remainder 0.26 %, at rest 0.28 mm
-# decentred and tilted 8.6 degrees; 89 s beside another run.
+# (doc/validation.md, "How narrow a nozzle the lens passes", which gives
+# the measured values). Also checks the sleeve's sleeve_force.csv.
 # The sleeves are switched on by their meshes (injection.prm).
 set(sleeve_on --set "Contact/Obstacle 7/Mesh file=../../meshes/contact/plunger.geo")
 set(inner_sleeve_on --set "Contact/Obstacle 8/Mesh file=../../meshes/contact/plunger.geo")
@@ -427,11 +410,8 @@ coshell_iol_test(iol.injection.sleeve_plunger check_injection.py injection.prm
 # The default lens (480 triangles) through 2.4 mm with both sleeves
 # (injection.prm's Contact/Obstacles 7 and 8): every check of
 # iol.injection. The bore's area is 1.2 times the optic's section; at
-# 2.2 mm the optic stalls at the nozzle's entrance. Measured 2026-11-29
-# (by hand, the same command): the optic's rims at most 0.43 mm apart in
-# the nozzle, the plunger's force 248.2 mN over 0.5 mm of travel and the
-# outer sleeve's at most 337.4 mN, energy remainder 0.025 %, at rest
-# 0.13 mm decentred and tilted 0.43 degrees; 183 s of time stepping.
+# 2.2 mm the optic stalls at the nozzle's entrance. The measured values
+# are in doc/validation.md. Labelled long.
 coshell_iol_test(iol.injection.two_sleeves check_injection.py injection.prm
                  --set "Constants/Changes=nozzle_radius = 1.2"
                  ${sleeve_on} ${inner_sleeve_on})
@@ -439,29 +419,19 @@ set_tests_properties(iol.injection.two_sleeves PROPERTIES LABELS "iol;long")
 # The whole injection at the slow end of real injectors, 1.5 mm/s (the
 # scene's 5 mm/s is the fast end): Constants/Values derives push_time and
 # the push stage's duration from plunger_speed, so the plunger makes the
-# same 21.9 mm stroke in 14.6 s. Every check of check_injection.py
-# (measured 2026-11-28: 1076 steps, plunger force at most 48.0 mN,
-# decentration 0.83 mm, tilt 18.7 degrees at the end of the deploy stage,
-# energy remainder 0.25 %; 62 s. With the settling, 2026-11-29: at rest
-# 0.24 mm and 17.4 degrees, still to 4e-8 degrees over the last 2 s;
-# 121 s).
+# same 21.9 mm stroke in 14.6 s. Every check of check_injection.py (the
+# measured values are in doc/validation.md). Labelled long.
 coshell_iol_test(iol.injection.slow_plunger check_injection.py injection.prm
                  --set ${coarse_lens}
                  --set "Constants/Changes=plunger_speed = 1.5")
 set_tests_properties(iol.injection.slow_plunger PROPERTIES LABELS "iol;long")
-# The same without friction (the scene's default until 2026-11-25; 3 min
-# on 2 threads on 2026-11-25: 989 steps, 7893 iterations; 5.5 min before
-# the coupling cache and the stall switch). Passed on 2 threads after
-# pairs were selected by gap (965 steps, smallest gap 1.6e-4 mm, plunger
-# force at most 26.1 mN, energy remainder 1.06 % of the work;
-# 2026-11-24). The stalls where the lens leaves the nozzle (t = 4.94-5.0
-# s) came from a filter/barrier mismatch where cells of different
-# thickness meet (doc/validation.md, "Why the lens stalled at the
-# nozzle's exit"). With the 1.7 mm plunger (the 1.5 mm one let the
-# trailing haptic slip beside it and pinched it in the taper;
-# doc/validation.md): 879 steps, smallest gap 5.1e-6 mm, plunger force at
-# most 23.1 mN, energy remainder 0.95 %, one thread (2026-11-24). With the
-# settling (2026-11-29): at rest 0.18 mm and 4.4 degrees; 127 s.
+# The same without friction: every check of check_injection.py. Where the
+# lens leaves the nozzle, cells of different thickness meet; the step
+# filter and the barrier must agree there (doc/validation.md, "Why the
+# lens stalled at the nozzle's exit"). The 1.7 mm plunger keeps the
+# trailing haptic from slipping beside it (a 1.5 mm one lets it, and the
+# taper pinches it; doc/validation.md). The measured values are in
+# doc/validation.md. Labelled long.
 coshell_iol_test(iol.injection.frictionless check_injection.py injection.prm
                  --set ${coarse_lens} ${frictionless})
 set_tests_properties(iol.injection.frictionless PROPERTIES LABELS "iol;long")

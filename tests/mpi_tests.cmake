@@ -58,14 +58,13 @@ coshell_mpi_test(cantilever_plate_dynamics_mumps
 # Restart across rank counts: the two-rank run resumes from the middle
 # checkpoint of the serial one (checkpoints store vectors by vertex).
 # Its static preload takes the exact tangent (Geometric stiffness =
-# current forces), as when the 1e-10 was set. The last acceleration is held
-# to ten times its round-off floor, which the checker measures with a third
-# run (a serial restart with UMFPACK): 1e-10 sat at that floor. On the AMD
-# EPYC machine of 2026-11-26 the two ranks' acceleration differed from the
-# serial one's by 1.51e-10, and a serial UMFPACK restart's by 8.0e-11 to
-# 1.0e-10 (a serial MUMPS restart's by 8.7e-11; with spectral radius 0.9
-# the ranks' by 2.9e-10), all in the in-plane components, whose own size
-# is 1e-4 of the largest; the Intel machine of 2026-11-20 gave 7.5e-11.
+# current forces), for which the 1e-10 holds. The last acceleration is
+# held to ten times its round-off floor, which the checker measures with a
+# third run (a serial restart with UMFPACK): 1e-10 sits at that floor.
+# The two ranks' acceleration and a serial UMFPACK or MUMPS restart's part
+# from the serial run's by about 1e-10, all in the in-plane components,
+# whose own size is 1e-4 of the largest (the measured values by machine
+# are in doc/validation.md).
 coshell_mpi_test(cantilever_plate_dynamics_restart
                  dynamics/cantilever_plate_free_vibration.prm amesos-mumps
                  --set "Element/Formulation=corotational"
@@ -116,9 +115,9 @@ coshell_mpi_test(self_contact_rollup_statics_mumps
 # barrier tangent's conditioning: two serial runs that differ only in the
 # direct solver (UMFPACK or KLU against MUMPS) differ there by 3e-10 and
 # 5e-10 of its largest value, as the two-rank run does (6.7e-10). That
-# column alone is held to 1e-8. The test pins the consistent tangent, the
-# scene's until 2026-11-26: with its symmetric part (the scene's since)
-# every converged quantity still agrees to 1e-12 or better, but the
+# column alone is held to 1e-8. The test pins the consistent tangent, not
+# the scene's symmetric part of it: with the symmetric part every
+# converged quantity still agrees to 1e-12 or better, but the
 # unconverged iterates are further from round-off's reach: the smallest
 # gap differs by 1.5e-6 between 1 and 2 ranks, and by 9e-7 and 1e-7
 # between serial runs with UMFPACK or KLU and with MUMPS. A solver

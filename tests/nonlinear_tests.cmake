@@ -101,27 +101,27 @@ set(sze_slit_plate_table
   --table ${sze_data}/sze_slit_annular_plate.csv w_B w_B 1)
 # Both scenes take the symmetric tangent with CHOLMOD (no applied
 # moments); .exact_tangent runs the consistent tangent with current forces.
-# --max-total-iterations: regression guards on the measured Newton
-# corrections with the static default, extrapolated forces (hemisphere 71,
-# slit plate 85; with current forces 113 and 296, or 159 with the slit
-# plate's former rotation bound of 0.05 rad).
+# --max-total-iterations: regression guards (label regression) on the
+# measured Newton corrections with the static default, extrapolated forces
+# (hemisphere 71, slit plate 85; with current forces 113, and 296 for the
+# slit plate, 159 with a 0.05 rad bound on a correction's rotation).
 coshell_nonlinear_test(corotational.sze_pinched_hemisphere
-  benchmarks/pinched_hemisphere.prm
+  benchmarks/pinched_hemisphere.prm LABELS nonlinear regression
   ARGS ${sze_hemisphere_table} --rtol 0.035 --max-total-iterations 75)
 coshell_nonlinear_test(corotational.sze_slit_annular_plate
-  benchmarks/slit_annular_plate.prm
+  benchmarks/slit_annular_plate.prm LABELS nonlinear regression
   ARGS ${sze_slit_plate_table} --rtol 0.01 --max-total-iterations 90)
 coshell_nonlinear_test(corotational.sze_pinched_hemisphere.exact_tangent
   benchmarks/pinched_hemisphere.prm
   ARGS ${exact_tangent} ${sze_hemisphere_table} --rtol 0.035 --min-order 1.8)
 coshell_nonlinear_test(corotational.sze_slit_annular_plate.exact_tangent
-  benchmarks/slit_annular_plate.prm
+  benchmarks/slit_annular_plate.prm LABELS nonlinear regression
   ARGS ${exact_tangent}
        --set "Nonlinear solver/Largest rotation per correction=0.05"
        ${sze_slit_plate_table} --rtol 0.01 --min-order 1.8
        --max-total-iterations 170)
-# Regression guard, not validation: the bound on the rotation of a
-# correction (the prm's 0.05 rad) takes the path in 159-160 Newton
+# Regression guard, not validation (label regression): the bound on the
+# rotation of a correction (0.05 rad) takes the path in 159-160 Newton
 # corrections (296 without it, 60 of them in two failed first steps); the
 # limit 170 catches the bound going missing.
 
@@ -148,7 +148,7 @@ coshell_nonlinear_test(stability.aspect_ratio_20_cantilever_end_shear
 # is cut (so the path has more than the one requested step) and the run
 # recovers and still meets the analytic end state.
 coshell_nonlinear_test(stability.full_roll_up_in_one_step
-  benchmarks/cantilever_end_moment.prm
+  benchmarks/cantilever_end_moment.prm LABELS nonlinear regression
   ARGS --set "Mesh/Subdivisions x=48" --set "Nonlinear solver/Load steps=1"
        --set "Quantities of interest/Reference curves="
        --point tip_u 1 -12 --point tip_w 1 0 --rtol 0.01 --length 1.2
@@ -156,12 +156,12 @@ coshell_nonlinear_test(stability.full_roll_up_in_one_step
 # (--max-total-iterations also asserts that summary.json's
 # newton_corrections counts the failed attempts' corrections: 71 measured,
 # of which 41 in converged steps, newton_iterations; the limit 80 is a
-# regression guard. With extrapolated forces throughout it took 90: after
-# the linear predictor of a 2 pi step the tangent with the linear bending
-# forces sends the next correction further off than the exact one, and the
-# half step failed too. Since a failed step leaves the rest of its stage on
-# the exact tangent (Geometric stiffness = auto), the default takes the
-# exact tangent's 71.)
+# regression guard, label regression. With extrapolated forces throughout
+# it takes 90: after the linear predictor of a 2 pi step the tangent with
+# the linear bending forces sends the next correction further off than the
+# exact one, and the half step fails too. A failed step leaves the rest of
+# its stage on the exact tangent (Geometric stiffness = auto), so the
+# default takes the exact tangent's 71.)
 # Snap-through of the hinged roof followed past the limit point by the
 # arc-length method: the load factor must rise, fall and the apex keep
 # moving down.

@@ -34,10 +34,9 @@ obstacle_course_case(pinched_cylinder load_point_deflection -0.000018248 0.005 1
 # solutions quoted since are 0.0924-0.0940). Slow, O(h^1.3), approach.
 obstacle_course_case(pinched_hemisphere load_point_displacement 0.094 0.01 1.0 0.01)
 
-# ANDES on the coarse hemisphere (issue: the ANDES defect). Without the
-# curvature scaling of its drilling terms (doc/theory.md, section 14)
-# ANDES+DKT locked: 91 %, 48 %, 6.4 % too stiff at 4 x 4, 8 x 8 and
-# 16 x 16 squares per quarter. With the defaults (K_h: c = 30, alpha_b:
+# ANDES on the coarse hemisphere. Without the curvature scaling of its
+# drilling terms (doc/theory.md, section 14) ANDES+DKT locks: 91 %, 48 %,
+# 6.4 % too stiff at 4 x 4, 8 x 8 and 16 x 16 squares per quarter. With the defaults (K_h: c = 30, alpha_b:
 # c_b = 0.1) it is 1.8 %, 0.40 %, 0.59 %; the 8 x 8 mesh must be within
 # 5 % and the 16 x 16 within 1.5 %, and c = c_b = 0 (the optimal element
 # unscaled) must still show the locking, so that the scaling, not a change

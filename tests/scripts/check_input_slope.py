@@ -7,7 +7,7 @@ force along the direction changes with the input, as the step's linear
 system answers. Three sessions differ only in the input of their last
 target, one time step after the target before it: s, s + delta and
 s - delta. The central difference of the forces in contact_forces.csv
-(17 digits since 2026-12-02) is compared with the slope the middle session printed for
+(17 digits) is compared with the slope the middle session printed for
 that step.
 
 A linearized step reports its force at its end through the force's

@@ -80,7 +80,7 @@ def main():
                                           settings=args.set)
                          + pushing_failures(run, args.pushing)]
         exit_with(failures)
-    # This session writes its VTU, against which its centroids are checked.
+    # This run writes its VTU, against which its centroids are checked.
     run = run_session(args.coshell, args.prm, args.output,
                       args.set + ["Output/Write VTU=true"])
     failures = session_failures(run, args.output, args.obstacles,

@@ -21,8 +21,8 @@ implicit solution of the same equations. Asserted:
   to the reference's at its step: its relative error falls at least
   twofold per halving of the step (consistency of at least first order).
 The linearized step reports its forces at its end by their slopes
-(Contact::extrapolate_loads()); until 2026-11-29 it wrote those of its
-start, 6 to 14 times as far off.
+(Contact::extrapolate_loads()); the forces at its start would be 6 to 14
+times as far off.
 With --loose-tolerance TOL, one more push runs Newton stopped once a
 correction is at most TOL (Nonlinear solver/Correction tolerance) at the
 first of --steps, the cheap accurate mode of that section. Asserted: its

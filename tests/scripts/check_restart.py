@@ -9,8 +9,8 @@ check_restart.py --coshell BIN --prm FILE --output DIR [--set A/B=v ...]
    the datasets and attributes a restart needs (read with h5py), its
    rotation matrices are orthonormal, and its time is past a multiple of DT.
 2. Run B from A's middle checkpoint, which h5py holds open meanwhile (as
-   a second run restarting from the same file would; until 2026-12-02 the
-   restart opened it for writing, which HDF5's lock refused, and crashed):
+   a second run restarting from the same file would: the restart opens it
+   read-only, so HDF5's lock does not refuse it):
    B's final checkpoint equals A's to TOL
    (relative, every dataset), and B's time_history.csv has A's rows (the
    earlier ones copied, the later ones recomputed; 17 printed digits), as
