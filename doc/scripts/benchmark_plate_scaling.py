@@ -19,7 +19,7 @@ Every run holds --lock (flock, shared with the other measurements on this
 machine), and waits until other processes use less than --max-busy cores.
 
 Usage (from the repository root; /usr/bin/python3 has matplotlib); the
-measurements of doc/performance.md:
+measurements of doc/performance/scaling.md:
 
   /usr/bin/python3 doc/scripts/benchmark_plate_scaling.py \
       --coshell /tmp/coshell-stable2/coshell --commit a21ba22 \

@@ -55,7 +55,7 @@ def device(t, speed, amplitude, frequency):
 
 
 def session(binary, output, times, args):
-    """Step lines (time, force, input, slope) of a session that sends the
+    """Step lines (time, force, input, slope) of an interactive session that sends the
     device's position at 'times' after the fold."""
     lines = [repr(FOLD_END)] + [
         f"{t!r} {device(t, args.speed, args.amplitude, args.frequency)!r}"

@@ -70,7 +70,7 @@ BARRIER = ["Contact/Method=barrier"]
 # label, integrator, the contact of the fold and of the push, more, and
 # the time step if not --step: the linearized penalty breaks the lens (or,
 # with its filter, jams) at 1 ms and keeps it whole at 0.5 ms
-# (doc/performance.md).
+# (doc/performance/iol.md).
 MODES = [
     ("backward Euler, Newton, barrier", "implicit euler", BARRIER, [], None),
     ("linearized Euler, barrier", "linearized implicit euler", BARRIER,
@@ -92,7 +92,7 @@ MODES = [
     # The same with the seed paper's tangent R K R^T (the element's
     # constant local stiffness turned by its frame, no geometric terms), as
     # its SOFA implementation stepped: half the element's cost per cell
-    # (doc/performance.md, "Element kernels"). The residual is the same;
+    # (doc/performance/elements-and-assembly.md, "Element kernels"). The residual is the same;
     # the step's matrix lacks the terms linear in the element forces.
     ("linearized Euler, penalty, step filter 0.5, dt 0.5 ms, history "
      "every 20th step, the paper's tangent", "linearized implicit euler",

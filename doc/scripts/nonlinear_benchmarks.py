@@ -3,7 +3,8 @@
 and with the paper's tangent, and the stability cases of
 tests/nonlinear_tests.cmake, and writes the tables and plots used by
 doc/validation.md (section "Co-rotational formulation") and
-doc/performance.md (section "Nonlinear benchmarks: wall time").
+doc/performance/nonlinear.md (section "Consistent against paper tangent:
+wall time").
 
   /usr/bin/python3 doc/scripts/nonlinear_benchmarks.py \
       --coshell /tmp/final-docs-build/coshell [--work /tmp/nonlinear-docs] \

@@ -1,6 +1,7 @@
 #!/usr/bin/python3
-"""Measurements behind doc/performance.md (sections on element kernels,
-linear solvers and memory). Writes into doc/performance/:
+"""Measurements behind doc/performance/elements-and-assembly.md (element
+kernels, assembly) and doc/performance/scaling.md (linear solvers, AMG).
+Writes into doc/performance/:
 
   element_benchmarks.csv   Google Benchmark aggregates (mean, stddev, ...)
                            of coshell_element_benchmarks (with '#' header
