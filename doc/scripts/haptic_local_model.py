@@ -55,8 +55,8 @@ def device(t, speed, amplitude, frequency):
 
 
 def session(binary, output, times, args):
-    """Step lines (time, force, input, slope) of an interactive session that sends the
-    device's position at 'times' after the fold."""
+    """Step lines (time, force, input, slope) of an interactive session that
+    sends the device's position at 'times' after the fold."""
     lines = [repr(FOLD_END)] + [
         f"{t!r} {device(t, args.speed, args.amplitude, args.frequency)!r}"
         for t in times] + ["quit"]
