@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Linear plate validation study for doc/validation.md.
+"""Linear plate validation study for doc/validation/plates.md.
 
 Runs coshell on every validation case x bending element x mesh (the three
 structured triangle patterns at refinement levels 0..4, unstructured gmsh
