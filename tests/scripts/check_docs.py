@@ -9,6 +9,9 @@
   protocol's own "session" (a client's connection) is not matched: only
   ordinal, relative or dated wording is.
 
+- every relative link of a Markdown file (README.md, doc/**/*.md) points at
+  an existing file, and its #anchor (if any) at a heading of that file.
+
 Exits 1 and lists every offending file and line.
 
     check_docs.py --root <source tree>
@@ -56,6 +59,37 @@ def diary_lines(path):
             yield number, match.group(0)
 
 
+LINK = re.compile(r"\[[^\]]*\]\(([^)\s]+)\)")
+
+
+def anchors(path):
+    """GitHub's anchors of a Markdown file's headings."""
+    found = set()
+    for line in path.read_text(encoding="utf-8").splitlines():
+        heading = re.match(r"^#{1,6}\s+(.*?)\s*#*\s*$", line)
+        if heading:
+            text = re.sub(r"[^\w\- ]", "", heading.group(1).lower())
+            found.add(text.replace(" ", "-"))
+    return found
+
+
+def broken_links(path, root):
+    text = path.read_text(encoding="utf-8")
+    text = re.sub(r"```.*?```", "", text, flags=re.DOTALL)
+    for number, line in enumerate(text.splitlines(), 1):
+        for target in LINK.findall(line):
+            if re.match(r"^[a-z]+:", target):
+                continue  # http:, https:, mailto:
+            file_part, _, anchor = target.partition("#")
+            linked = (path.parent / file_part).resolve() if file_part \
+                else path
+            if not linked.exists():
+                yield number, target, "no such file"
+            elif anchor and linked.suffix == ".md" and \
+                    anchor not in anchors(linked):
+                yield number, target, "no such heading"
+
+
 def line_count(path):
     return len(path.read_text(encoding="utf-8").splitlines())
 
@@ -79,6 +113,11 @@ def main():
         if lines > args.doc_lines:
             problems.append(f"{path.relative_to(root)}: {lines} lines, more "
                             f"than {args.doc_lines}")
+    markdown = [root / "README.md"] + sorted((root / "doc").rglob("*.md"))
+    for path in markdown:
+        for number, target, reason in broken_links(path, root):
+            problems.append(f"{path.relative_to(root)}:{number}: link "
+                            f"'{target}': {reason}")
     for path in text_files(root):
         if path.resolve() == this_script:
             continue
@@ -91,8 +130,8 @@ def main():
     if problems:
         print(f"check_docs: {len(problems)} problem(s)")
         return 1
-    print("check_docs: README and doc/ within their lengths, no work-diary "
-          "wording")
+    print("check_docs: README and doc/ within their lengths, every link "
+          "resolves, no work-diary wording")
     return 0
 
 
