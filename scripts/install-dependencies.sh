@@ -15,6 +15,7 @@ packages=(
   python3 python3-matplotlib  # test checkers and plots (/usr/bin/python3)
   python3-h5py          # the checkpoint test reads the HDF5 files
   libopenblas0-pthread  # faster BLAS than the reference one for UMFPACK
+  ccache                # compiler cache: a rebuild or a second clone compiles only what changed
 )
 if [ "${1:-}" = "--with-peers" ]; then
   packages+=(calculix-ccx)  # scripts/calculix_compare.py

@@ -6,6 +6,9 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 bash scripts/install-dependencies.sh --with-peers
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
+# ccache keys paths relative to the tree, so another clone reuses the cache.
+export CCACHE_BASEDIR="$PWD"
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release \
+  -DCMAKE_CXX_COMPILER_LAUNCHER=ccache
 cmake --build build -j "$(nproc)"
 ./build/coshell prm/plates/clamped_square_pressure.prm
