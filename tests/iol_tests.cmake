@@ -381,7 +381,7 @@ coshell_iol_test(iol.injection.modified_l check_injection.py injection.prm
 # A harder case: the whole injection of the coarse lens through a 3.3 mm
 # nozzle instead of 3.5 (Constants/Changes, which the cartridge, the
 # plunger and the bag's opening follow), every check of iol.injection,
-# the optic's fold now within the narrower bore. The plunger (3.2 mm)
+# the optic's fold within the narrower bore. The plunger (3.2 mm)
 # still leaves less room beside it in the 4 mm chamber (0.4 mm) than the
 # haptic's thickness (0.45 mm), so the trailing haptic stays ahead of it;
 # at 3.0 mm it slides beside the plunger and is pinched where the taper

@@ -44,7 +44,7 @@ import sys
 
 from coshell_checks import (Checks, add_scene_arguments, energy_balance,
                             force_file_check, read_rows, read_summary,
-                            run_scene)
+                            run_scene_of)
 
 
 def quantity_rows(output):
@@ -130,8 +130,7 @@ def main():
                         help="a Force file against contact_forces.csv")
     args = parser.parse_args()
 
-    run_scene(args.coshell, args.prm, args.output, args.set)
-    forces = read_rows(os.path.join(args.output, "contact_forces.csv"))
+    forces = run_scene_of(args, "contact_forces.csv")
     last = last_step_rows(forces)
     checks = Checks()
     check = checks.that

@@ -32,8 +32,8 @@ import math
 import os
 
 from coshell_checks import (Checks, add_scene_arguments, floats,
-                            kept_factors_failures, read_rows, read_summary,
-                            run_scene)
+                            kept_factors_failures, read_summary,
+                            run_scene_of)
 
 
 def zero_crossings(t, x):
@@ -78,8 +78,7 @@ def main():
                         "solver/Reuse factorization)")
     args = parser.parse_args()
 
-    run_scene(args.coshell, args.prm, args.output, args.set)
-    rows = read_rows(os.path.join(args.output, "time_history.csv"))
+    rows = run_scene_of(args, "time_history.csv")
     if args.stage is not None:
         rows = [r for r in rows if int(float(r["stage"])) == args.stage]
     t = floats(rows, "time")

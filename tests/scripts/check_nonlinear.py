@@ -26,10 +26,9 @@ Newton history against references given here.
 import argparse
 import csv
 import math
-import os
 
-from coshell_checks import (add_scene_arguments, exit_with, read_rows,
-                            read_summary, run_scene)
+from coshell_checks import (add_scene_arguments, exit_with, read_summary,
+                            run_scene_of)
 
 
 def check_points(rows, points, rtol, length, column="load_factor"):
@@ -122,9 +121,8 @@ def main():
                              "(load_factor, or time for staged scenes)")
     args = parser.parse_args()
 
-    run_scene(args.coshell, args.prm, args.output, args.set)
-    rows = read_rows(os.path.join(args.output, "load_displacement.csv"))
-    history = read_rows(os.path.join(args.output, "newton_history.csv"))
+    rows, history = run_scene_of(args, "load_displacement.csv",
+                                 "newton_history.csv")
 
     points = list(args.point)
     for path, column, qoi, sign in args.table:

@@ -3,6 +3,9 @@ check values and collect the failures, and the energy balance of a
 dynamic run with contact.
 
   run_scene(coshell, prm, output, assignments)  the run's directory
+  run_scene_of(args, csv, ...)                   the same from the
+                                                 checker's arguments; the
+                                                 rows of its CSV files
   read_rows(path), read_summary(output)          CSV rows, summary.json
   Checks()                                       'ok'/'FAIL' per check,
       checks(what, ok) (or checks.that(ok, what)),
@@ -43,6 +46,16 @@ def run_scene(coshell, prm, output, assignments=(), restart=None,
         sys.exit(f"FAIL: coshell exited with status {status}: "
                  + " ".join(command))
     return output
+
+
+def run_scene_of(args, *csv_files):
+    """Runs the scene of the checker's arguments (add_scene_arguments:
+    --coshell, --prm, --output, --set) and returns the rows of each of
+    'csv_files' the run wrote (one list of rows, or a tuple of them)."""
+    run_scene(args.coshell, args.prm, args.output, args.set)
+    tables = tuple(read_rows(os.path.join(args.output, name))
+                   for name in csv_files)
+    return tables[0] if len(tables) == 1 else tables
 
 
 def add_scene_arguments(parser):
@@ -119,10 +132,9 @@ def run_contact_scene(args, pairs):
     contact_forces.csv and time_history.csv rows and checks that the
     smallest gap over every pair and step stays >= 0 ('pairs' names them
     in the check). Returns the checks, the force rows and the history."""
-    run_scene(args.coshell, args.prm, args.output, args.set)
+    forces, history = run_scene_of(args, "contact_forces.csv",
+                                   "time_history.csv")
     checks = Checks()
-    forces = read_rows(os.path.join(args.output, "contact_forces.csv"))
-    history = read_rows(os.path.join(args.output, "time_history.csv"))
     gaps = [float(r["min_distance"]) for r in forces]
     finite = [g for g in gaps if math.isfinite(g)]
     gap = min(finite, default=math.nan)
