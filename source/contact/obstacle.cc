@@ -364,7 +364,7 @@ namespace coshell::contact
                         "Constants set when a .geo Mesh file is meshed, as "
                         "'name = value' entries separated by ',' (see "
                         "Mesh/Gmsh parameters). Unit: each constant's own, "
-                        "as the .geo file documents it.");
+                        "as the Mesh file documents it.");
       prm.declare_entry("Name", "obstacle " + std::to_string(k),
                         Patterns::Anything(),
                         "Name in messages and in contact_forces.csv.");

@@ -35,7 +35,7 @@ namespace coshell::mesh
                       "'name = value' entries separated by ',' (gmsh "
                       "-setnumber), overriding the file's DefineConstant "
                       "defaults, e.g. 'haptic_width = 0.5'. Unit: each "
-                      "constant's own, as the .geo file documents it.");
+                      "constant's own, as the Gmsh file documents it.");
     prm.declare_entry("Triangle pattern", "crossed",
                       Patterns::Selection("same-diagonal|alternating|crossed"),
                       "Selects how a generated rectangle splits each "
@@ -43,10 +43,10 @@ namespace coshell::mesh
                       "or crossed).");
     prm.declare_entry("Length x", "1", Patterns::Double(0),
                       "Plate length along x; > 0 for Source = rectangle. "
-                      "Unit: length (the scene's: m, mm, ...).");
+                      "Unit: length (m in SI, mm in the IOL scenes).");
     prm.declare_entry("Length y", "1", Patterns::Double(0),
                       "Plate length along y; > 0 for Source = rectangle. "
-                      "Unit: length (the scene's: m, mm, ...).");
+                      "Unit: length (m in SI, mm in the IOL scenes).");
     prm.declare_entry("Subdivisions x", "4", Patterns::Integer(1),
                       "Number of squares along x at refinement level 0. "
                       "Unit: dimensionless (a count).");
@@ -73,7 +73,7 @@ namespace coshell::mesh
                       "refined: an imperfection, a curved mid-surface (e.g. "
                       "an optic's sag), a change of frame. The result is "
                       "the stress-free reference configuration. Unit: "
-                      "length (the scene's: m, mm, ...).");
+                      "length (m in SI, mm in the IOL scenes).");
     prm.leave_subsection();
   }
 

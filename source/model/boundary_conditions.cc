@@ -205,7 +205,7 @@ namespace coshell::model
         "Conditions at the vertex nearest a point, as 'x y z : condition' "
         "entries separated by ';' (e.g. '0 0 10 : fixed uz' to stop a "
         "rigid translation of a self-equilibrated model). Unit: length for "
-        "x y z (the scene's: m, mm, ...).");
+        "x y z (m in SI, mm in the IOL scenes).");
     prm.leave_subsection();
   }
 

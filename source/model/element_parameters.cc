@@ -29,7 +29,7 @@ namespace coshell::model
           "centroid of each triangle) and region (its material id, the gmsh "
           "physical surface), constant over each triangle, e.g. "
           "if(region == 1, 0.8 - 0.5 * (x^2 + y^2) / 9, 0.45). Unit: length "
-          "(the scene's: m, mm, ...).");
+          "(m in SI, mm in the IOL scenes).");
       prm.declare_entry(
           "Density", "0", Patterns::Anything(),
           "Mass per unit volume, >= 0 (steel: 7850 kg/m^3 = 7.85e-9 "

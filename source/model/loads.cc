@@ -147,12 +147,12 @@ namespace coshell::model
     prm.declare_entry("Point forces", "", Patterns::Anything(),
                       "Forces at the vertex nearest each point, as "
                       "'x y z : fx fy fz' entries separated by ';'. Unit: "
-                      "length for x y z (the scene's: m, mm, ...), force "
+                      "length for x y z (m in SI, mm in the IOL scenes), force "
                       "for fx fy fz (N).");
     prm.declare_entry("Point moments", "", Patterns::Anything(),
                       "Moments at the vertex nearest each point, as "
                       "'x y z : mx my mz' entries separated by ';'. Unit: "
-                      "length for x y z (the scene's: m, mm, ...), "
+                      "length for x y z (m in SI, mm in the IOL scenes), "
                       "force*length for mx my mz (N m in SI, N mm in "
                       "mm-N-s-tonne scenes).");
     prm.declare_entry("Edge forces", "", Patterns::Anything(),

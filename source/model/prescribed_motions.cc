@@ -93,7 +93,7 @@ namespace coshell::model
                         "The vertices moved: 'boundary N' (every vertex of "
                         "boundary id N) or 'point x y z' (the vertex nearest "
                         "that point); empty: this motion is not defined. "
-                        "Unit: length for x y z (the scene's: m, mm, ...).");
+                        "Unit: length for x y z (m in SI, mm in the IOL scenes).");
       prm.declare_entry("Components", "ux uy uz rx ry rz", Patterns::Anything(),
                         "Prescribed components, space separated: any of ux "
                         "uy uz, and rx ry rz all together or none (the "

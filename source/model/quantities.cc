@@ -43,15 +43,14 @@ namespace coshell::model
                       "Nodal values at the vertex nearest a point, as "
                       "'name: x y z component' entries separated by ';'; "
                       "component is ux, uy, uz, rx, ry or rz. Unit: length "
-                      "for x y z (the scene's: m, mm, ...); the value is in "
-                      "its component's unit, length for ux, uy, uz, rad for "
-                      "rx, ry, rz.");
+                      "for x y z (m in SI, mm in the IOL scenes); the "
+                      "value in its component's (length for ux, uy, uz, "
+                      "rad for rx, ry, rz).");
     prm.declare_entry("Maximum values", "", Patterns::Anything(),
                       "Largest-magnitude nodal value of a component over the "
                       "mesh (sign kept), as 'name: component' entries "
-                      "separated by ';'. Unit: the value is in its "
-                      "component's unit, length for ux, uy, uz, rad for "
-                      "rx, ry, rz.");
+                      "separated by ';'. Unit: the component's (length "
+                      "for ux, uy, uz, rad for rx, ry, rz).");
     prm.declare_entry(
         "Region poses", "", Patterns::Anything(),
         "Where a region of the shell (a material id: the optic of a lens) "
@@ -67,7 +66,7 @@ namespace coshell::model
         "name_shape_deviation, the largest distance of a vertex of the "
         "region from the rigid motion of its reference shape that fits "
         "it best in least squares (how far the region is deformed). "
-        "Unit: length for cx cy cz (the scene's: m, mm, ...), "
+        "Unit: length for cx cy cz (m in SI, mm in the IOL scenes), "
         "dimensionless for ax ay az.");
     prm.declare_entry("Reference values", "",
                       Patterns::Map(Patterns::Anything(), Patterns::Double()),
