@@ -70,8 +70,7 @@ def add_scene_arguments(parser):
 def kept_factors_failures(output):
     """For runs with Linear solver/Reuse factorization: a failure line if
     no solve used kept factors, i.e. if the solver ignored the request."""
-    with open(os.path.join(output, "summary.json")) as f:
-        reused = json.load(f).get("reused_factor_solves", 0)
+    reused = read_summary(output).get("reused_factor_solves", 0)
     print(f"solves with kept factors: {reused}")
     if reused > 0:
         return []
