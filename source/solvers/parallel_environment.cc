@@ -180,16 +180,14 @@ namespace coshell::solvers
     // thread count: Debian's CHOLMOD (SuiteSparse 5.12) asks for
     // CHOLMOD_OMP_NUM_THREADS = 4 in its supernodal factorization. On one
     // thread those wake-ups and futex waits cost more than the
-    // factorization (Sze's hemisphere with the symmetric tangent: 24 % of
-    // the samples in the kernel's scheduler). On two threads libgomp's
-    // team spun against OpenBLAS's and the cells' threads: on an Intel
-    // Xeon the IOL fold's factorizations took 23.6 s instead of 1.9 s,
-    // even with the dynamic adjustment that caps a region at the idle
-    // cores. The parallel work of a factorization is in the BLAS, so no
-    // OpenMP region may be active (max-active-levels 0), whatever the
-    // thread count (a 480 000-DoF plate solves as fast: doc/performance.md,
-    // "OpenMP regions off at every thread count"). It is a setting of the
-    // calling thread (GCC 12), the one the solvers run on.
+    // factorization (the kernel's scheduler dominates the profile). On
+    // two threads libgomp's team spins against OpenBLAS's and the cells'
+    // threads and the factorizations take many times longer, even with
+    // the dynamic adjustment that caps a region at the idle cores. The
+    // parallel work of a factorization is in the BLAS, so no OpenMP
+    // region may be active (max-active-levels 0), whatever the thread
+    // count (a large plate solves as fast: doc/performance.md). It is a
+    // setting of the calling thread (GCC 12), the one the solvers run on.
     void limit_openmp_regions()
     {
       if (const auto set_levels =

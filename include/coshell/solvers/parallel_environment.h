@@ -10,8 +10,8 @@ namespace coshell::solvers
 {
   /// Starts MPI unless it is running already. coshell starts MPI only when
   /// something needs it (a Trilinos solver, or a launch by mpirun):
-  /// OpenMPI's start-up alone takes about 0.4 s, more than a whole
-  /// small scene. MPI is finalized at exit.
+  /// OpenMPI's start-up alone takes longer than a whole small scene
+  /// (doc/performance.md). MPI is finalized at exit.
   void ensure_mpi_initialized();
 
   /// True when the process was started by mpirun/mpiexec (OpenMPI, MPICH
