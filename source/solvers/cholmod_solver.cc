@@ -59,10 +59,8 @@ namespace coshell::solvers
       // A shell vertex has six DoFs: CHOLMOD's defaults 4, 16 and 48
       // leave vertices apart that 6, 24 (four vertices) and 72 merge.
       // Fewer, larger supernodes cost a few more flops and far fewer
-      // small BLAS calls: the folded lens's factorization (1 890 DoFs)
-      // 1.15x to 1.2x faster, its 1 692- and 6 400-triangle refinements
-      // 1.05x and 1.1x (doc/performance.md, "CHOLMOD's supernodes and
-      // its input").
+      // small BLAS calls, so the factorizations of shells of a few
+      // thousand DoFs take less time (doc/performance.md).
       common.nrelax[0] = 6;
       common.nrelax[1] = 24;
       common.nrelax[2] = 72;
@@ -106,8 +104,8 @@ namespace coshell::solvers
   /// postordered), then analyses P A P' again in the natural order, given
   /// explicitly as its lower triangle: a supernodal factorization reads
   /// that as it is. Given A's upper triangle and P, CHOLMOD built
-  /// tril(P A P') itself at every factorization, 0.2 ms of the haptic
-  /// step's 1.4 ms of factorization. Here the map from A's entries to
+  /// tril(P A P') itself at every factorization, a noticeable part of a
+  /// small factorization's time. Here the map from A's entries to
   /// those of P A P' is made once per pattern: a transposition of the
   /// entries' own positions. (A matrix small enough for a simplicial
   /// factor is still transposed once per factorization, by CHOLMOD.)
@@ -123,8 +121,8 @@ namespace coshell::solvers
       positions[k] = static_cast<double>(k);
     order.resize(rows.n_rows());
     // The order only: the simplicial analysis stops before the supernodes,
-    // which the second analysis finds (1.06 ms for both against 1.27 ms
-    // with two supernodal analyses, on the folded lens).
+    // which the second analysis finds (cheaper than two supernodal
+    // analyses).
     const int kind           = common.supernodal;
     common.supernodal        = CHOLMOD_SIMPLICIAL;
     cholmod_factor *ordering = cholmod_analyze(&matrix, &common);
@@ -177,10 +175,10 @@ namespace coshell::solvers
       d.permute_values();
     // OpenBLAS shares a call between threads by its size alone, and the
     // supernodes of a small factorization make calls it shares at a loss:
-    // the IOL's haptic step (1 890 DoFs, 4.7 Mflop) factorized 1.04x
-    // faster on one BLAS thread than on two. A clamped plate of 482 406
-    // DoFs solved no faster on two either (1.83 to 2.40 s against 1.66
-    // to 1.70 s), but larger machines may: the line is drawn low.
+    // the IOL's haptic step factorizes faster on one BLAS thread than on
+    // two. A clamped plate of half a million DoFs solves no faster on two
+    // either, but larger machines may: the line is drawn low
+    // (doc/performance.md).
     constexpr double smallest_shared_flops = 1e8;
     const SerialBlas serial(d.flops < smallest_shared_flops);
     if (!d.factor || !cholmod_factorize(d.permuted, d.factor, &d.common) ||

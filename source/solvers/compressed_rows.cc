@@ -30,8 +30,7 @@ namespace coshell::solvers
       const double       diagonal = row_values[0];
       // The pattern reserves room for every contact pair that may come
       // within reach during a step; most of those entries stay exactly
-      // zero (70 % of a folded lens's), and factorized they would only
-      // cost fill and flops. The diagonal is kept whatever its value.
+      // zero, and factorized they would only cost fill and flops. The diagonal is kept whatever its value.
       unsigned int entry = 1;
       for (; entry < length; ++entry)
       {

@@ -11,9 +11,9 @@ namespace coshell::solvers
   /// std::allocator, except that a vector grown by resize() leaves its
   /// new numbers uninitialized instead of zeroing them. CompressedRows
   /// grows its arrays to the pattern's size before every copy and
-  /// shrinks them to the nonzeros after; zeroing two thirds of them again
-  /// each time (the room kept for contact that stays zero) was 1.7 % of
-  /// the IOL haptic step.
+  /// shrinks them to the nonzeros after; zeroing most of them again each
+  /// time (the room kept for contact that stays zero) would be paid at
+  /// every step of a haptic loop.
   template<typename T>
   struct UninitializedAllocator : std::allocator<T>
   {

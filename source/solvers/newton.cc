@@ -172,8 +172,8 @@ namespace coshell::solvers
   }
 
   /// What the linear solver does not read, the problem need not assemble:
-  /// CHOLMOD reads a symmetric tangent's entries with column <= row only
-  /// (on the IOL scene the cells' scatter was 6 % of the run).
+  /// CHOLMOD reads a symmetric tangent's entries with column <= row only,
+  /// and the cells' scatter is a sizeable part of a run (doc/performance.md).
   void Newton::assemble_for_solver(const NonlinearProblem &problem,
                                    TangentMatrix          &tangent) const
   {
@@ -226,8 +226,8 @@ namespace coshell::solvers
   /// s = 0, keeping a in [0.1, 1]. Rejected trials are undone; an
   /// accepted one is left applied, with its residual in 'trial_residual',
   /// for the caller to keep or undo. The first trial assembles 'tangent'
-  /// too if given: on the IOL injection about 73 % of the line searches
-  /// accept it, and its evaluation is then the next iteration's. Later
+  /// too if given: most line searches accept it (on the IOL injection),
+  /// and its evaluation is then the next iteration's. Later
   /// trials are accepted less often, and assemble the residual alone.
   Newton::LineSearch Newton::line_search(NonlinearProblem     &problem,
                                          const Vector<double> &residual,
