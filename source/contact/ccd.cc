@@ -130,7 +130,7 @@ namespace coshell::contact
       // at 0.9 of the way to where the plane's bound reaches the kept
       // gap, as the walk's own steps do: landing on the bound would leave
       // round-off to decide whether the walk stops there, and a run's
-      // path (serial against MPI, measured) with it.
+      // path (serial against MPI) with it.
       if (try_separating_plane(iteration))
       {
         const double plane_step =

@@ -35,8 +35,8 @@ namespace coshell::contact
     /// marked with the row they belong to. Marking a row's sorted
     /// exclusion list once is cheaper than a binary search per hit: a
     /// vertex's box of reach overlaps much of its own excluded
-    /// neighbourhood, some (t/h)^2 triangles, and on a 1 692-triangle lens
-    /// those searches were 5 % of a fold (doc/performance.md).
+    /// neighbourhood, some (t/h)^2 triangles, and on a fine lens those
+    /// searches show in a fold's profile (doc/performance.md).
     class ExclusionMarks
     {
     public:
@@ -277,10 +277,10 @@ namespace coshell::contact
 
   double Contact::candidate_margin() const
   {
-    // A quarter of the thickness: measured on the IOL push (linearized
-    // steps of 1 ms), the filter and the search took least with it among
-    // 0.1, 0.25, 0.5 and 1 (wider lists cost more to screen than their
-    // rebuilds save).
+    // A quarter of the thickness: on the IOL push the filter and the
+    // search take least with it among 0.1, 0.25, 0.5 and 1 times the
+    // thickness (wider lists cost more to screen than their rebuilds
+    // save; doc/performance.md).
     return 0.25 * largest_thickness_;
   }
 

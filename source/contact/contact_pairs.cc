@@ -445,7 +445,7 @@ namespace coshell::contact
   {
     // Obstacle vertices are searched within the obstacle's reach (its
     // thickest offset); the pairs they list beyond their own triangle's
-    // offset carry no force: 78 % of the pairs on the IOL's haptic bed.
+    // offset carry no force: most of the pairs on the IOL's haptic bed.
     // (The other kinds are searched within their own reach.) The margin (a
     // millionth of a part per thousand) covers the round-off between the
     // search's distance and the one made again below, so a pair this skips

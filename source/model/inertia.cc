@@ -285,7 +285,7 @@ namespace coshell::model
   {
     /// The matrices of one cell, kept per thread: add_cell() runs once per
     /// cell and evaluation, on several cells at once, and allocating them
-    /// each time was 3 % of the IOL injection.
+    /// each time would show in every assembly.
     struct CellMatrices
     {
       FullMatrix<double> mass, damping, drag, product;

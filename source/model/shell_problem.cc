@@ -135,8 +135,8 @@ namespace coshell::model
       generations.push_back(contribution->update_coupled_vertices(at));
     }
     // Contact keeps its list while the shell moves little: the same lists
-    // need neither gathering nor sorting (on the IOL's haptic bed,
-    // comparing the gathered list alone was 2 % of a step).
+    // need neither gathering nor sorting (even comparing a gathered list
+    // shows in a haptic step's profile).
     if (generations == coupling_generations_)
       return;
     coupling_generations_ = std::move(generations);

@@ -375,12 +375,13 @@ namespace coshell::contact
     /// obstacle_tree() when a search first needs it after the obstacle
     /// moved: a moving obstacle (the plunger) moves at every evaluation,
     /// while the candidate lists that search the tree are kept over many
-    /// steps (building it at each move was 3 % of a haptic step).
+    /// steps (building it at each move would show in every haptic
+    /// step).
     mutable std::vector<std::optional<Tree>> obstacle_trees_;
     /// How often each obstacle's positions have changed (from 1): a list
     /// made at a count still current saw the same positions, and the
     /// drifts need not be summed over the obstacle's vertices (a still
-    /// cartridge has thousands; 2 % of a haptic step).
+    /// cartridge has thousands, summed at every evaluation).
     std::vector<std::uint64_t>    obstacle_moves_;
     std::vector<Pair>             pairs_;
     std::vector<dealii::Point<3>> positions_;       ///< shell, at prepare()

@@ -8,10 +8,10 @@
 // bisected once per run of the block's sorted columns and walked, and
 // couplings the pattern lacks are left out on the way. The sums are the
 // same, entry by entry and in the same order of blocks, so the results
-// are identical to the bit. On the IOL test bed the pair terms took 1.4 s
-// against 2.0 s; for the cells' 18 x 18 blocks, which the pattern always
-// holds, deal.II's path measured faster than this bisection. The cells
-// have their own map instead (CellScatter, below).
+// are identical to the bit. The contact pair terms add faster this way;
+// for the cells' 18 x 18 blocks, which the pattern always holds,
+// deal.II's path is faster than this bisection (doc/performance.md). The
+// cells have their own map instead (CellScatter, below).
 
 #include <deal.II/base/types.h>
 #include <deal.II/lac/full_matrix.h>
@@ -53,7 +53,7 @@ namespace coshell::model
   /// value array, found once per sparsity pattern. The same cells are
   /// added in every evaluation, so the row searches of deal.II's
   /// distribute_local_to_global are paid once instead of at every
-  /// assembly (7 % of a linearized IOL step). The sums are the same, in
+  /// assembly (doc/performance.md). The sums are the same, in
   /// the same order, so results are identical to the bit. The map holds
   /// 324 indices a cell, and which 171 of them lie on or below the
   /// diagonal; a mesh whose map would pass 'largest_map_bytes'

@@ -82,8 +82,8 @@ namespace coshell::model
     {
       if (v >= vertex_dofs_.size())
         throw_not_a_vertex(v); // out of line: the message's code inlined
-                               // in every loop cost 2.7 % of a haptic
-                               // step's instructions, the call 0.4 %
+                               // in every loop costs far more than the
+                               // call
       return vertex_dofs_[v];
     }
     bool vertex_is_used(unsigned int v) const;
