@@ -8,10 +8,9 @@
 // can be set from the prm (Gmsh parameters).
 // prm/iol/injection.prm makes the chamber a circular tube of the folding
 // wings' radius (chamber_half_width = chamber_half_height = 2) that takes
-// the lens already folded by the wings. The defaults below are the first
-// design, a flat chamber whose taper was to fold the lens as it was
-// pushed: it jammed in all eleven runs (doc/validation.md, "Why wings and
-// not a taper").
+// the lens already folded by the wings. The defaults below are a flat
+// chamber whose taper would fold the lens as it is pushed: the lens jams
+// in it, which is why the scene folds with wings (doc/validation.md).
 SetFactory("OpenCASCADE");
 DefineConstant[
   refinement_level = 0,
