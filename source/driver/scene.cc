@@ -1104,7 +1104,7 @@ namespace coshell::driver
   // shell's answer du/ds = K^-1 dr/ds adds c_o . du/ds: the Schur
   // complement of the shell in that extended tangent, which is what a
   // haptic loop's local model between two steps needs (Cavusoglu and
-  // Tendick 2000; see the README's protocol).
+  // Tendick 2000; protocol in doc/user-guide/interactive.md).
   void Scene::reply_input_slopes(model::ShellProblem &problem,
                                  contact::Contact    &contact,
                                  unsigned int         step,

@@ -62,8 +62,8 @@ namespace coshell::driver
 
     /// Interactive coupling: dynamic stages advance to the target times
     /// read from 'commands', one per line, instead of running through,
-    /// and every step writes one line to 'replies' (protocol in the
-    /// README, "Interactive coupling").
+    /// and every step writes one line to 'replies' (protocol in
+    /// doc/user-guide/interactive.md).
     void drive_interactively(std::istream &commands, std::ostream &replies);
 
     /// Resumes the run from a checkpoint written by Output/Checkpoint
