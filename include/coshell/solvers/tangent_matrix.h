@@ -29,8 +29,8 @@ namespace coshell::solvers
     /// a matrix already on that pattern at that version keeps its storage
     /// and its values, which the next zero() clears. A Newton keeps its
     /// tangent so from one solve to the next: made anew each time step,
-    /// the 1.2 MB matrix of the IOL lens was allocated, zeroed and freed
-    /// on top of the assembly's own zeroing.
+    /// the matrix would be allocated, zeroed and freed on top of the
+    /// assembly's own zeroing.
     void reinit(const dealii::SparsityPattern &pattern, std::uint64_t version);
     /// Several ranks: this rank's rows of a matrix on 'pattern' (compressed,
     /// with the rows the rank writes to), which must outlive this.
