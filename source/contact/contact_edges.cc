@@ -213,8 +213,8 @@ namespace coshell::contact
     edges.clear();
     // Neighbouring triangles share edges: take each once, without a sort
     // (which cost more than the query itself). The hits are taken as the
-    // tree finds them, not gathered in a vector first: that vector was
-    // allocated anew for each of the ~800 queries a haptic step makes.
+    // tree finds them, not gathered in a vector first, which would be
+    // allocated anew for each of the many queries a haptic step makes.
     ++marks.query;
     const auto take_edges = [&](const std::pair<BoundingBox<3>, unsigned> &hit)
     {

@@ -99,7 +99,8 @@ namespace coshell::element
                                      const ShellMaterial       &material,
                                      const ShellElementOptions &options)
   {
-    material.validate(); // before the geometry check, as it always was
+    material.validate(); // before the geometry check: a bad material is
+                         // reported first
     const ElementFrame frame = make_element_frame(triangle);
     return rotate_to_global(shell_stiffness_local(frame, material, options),
                             frame.axes);

@@ -24,8 +24,8 @@ namespace coshell::model
     }
 
     /// The three entries of a cell vertex's DoFs from 'first' on, through
-    /// the model's table of vertex DoFs: deal.II's vertex_dof_index() was
-    /// most of the cost of a cell's rates.
+    /// the model's table of vertex DoFs: deal.II's vertex_dof_index()
+    /// would be most of the cost of a cell's rates.
     Tensor<1, 3> vertex_slot(const ShellModel     &model,
                              const Vector<double> &values,
                              const CellIterator   &cell,
@@ -305,8 +305,8 @@ namespace coshell::model
     /// entries, the damping alpha M plus the drag at most 54. Its products
     /// take the same terms in the same order as the dense ones, less the
     /// zeros, so they give the same numbers; they run once per cell and
-    /// evaluation, where the dense 18x18 products and their zeroing were
-    /// a twelfth of a haptic step.
+    /// evaluation, where the dense 18x18 products and their zeroing would
+    /// be a sizeable part of a haptic step.
     class SparseCellMatrix
     {
     public:
@@ -417,8 +417,8 @@ namespace coshell::model
 
     /// A cell's entries of a global vector, by kernel index. The indices
     /// are looked up once: a sparse cell matrix visits each row up to nine
-    /// times, and deal.II's vertex_dof_index() was a third of the cost of
-    /// Inertia::damping_force().
+    /// times, and deal.II's vertex_dof_index() would be a large part of
+    /// the cost of Inertia::damping_force().
     class GlobalEntries
     {
     public:

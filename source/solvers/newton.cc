@@ -198,9 +198,9 @@ namespace coshell::solvers
   {
     linear_solver_.factorize(tangent, problem.symmetric_tangent());
     Vector<double> x(residual.size());
-    // Refining the correction is what the next Newton iteration does: on
-    // the IOL fold UMFPACK's refinement steps were a quarter of the linear
-    // solver's time, with the same iterates to 11 digits without them.
+    // Refining the correction is what the next Newton iteration does:
+    // UMFPACK's refinement steps would cost linear-solver time and leave
+    // the iterates the same to 11 digits (doc/performance.md).
     linear_solver_.solve(x, residual, LinearSolver::Refinement::none);
     problem.distribute(x);
     if (!is_finite(x))

@@ -750,8 +750,8 @@ namespace coshell::contact
                                       model::DofBlock   &block);
     /// Blocks reused across the pairs of an evaluation, one per number of
     /// the pair's shell vertices (1 to 4): one block sized to each pair in
-    /// turn was allocated anew whenever the kind of pair changed, nearly
-    /// once a pair.
+    /// turn would be allocated anew whenever the kind of pair changes,
+    /// nearly once a pair.
     using PairBlocks = std::array<model::DofBlock, 5>;
     /// The block of 'blocks' for the pair, holding the pair's shell DoFs.
     model::DofBlock &pair_dofs(const Pair &pair, PairBlocks &blocks) const;
