@@ -6,8 +6,8 @@
 //                     every rank holds the whole mesh (partitioned by METIS,
 //                     the design of parallel::shared::Triangulation), the
 //                     whole sparsity pattern and full-length vectors;
-//   replicated-mesh   CoShell's linear statics since 786330e: the whole mesh,
-//                     but a Trilinos pattern of this rank's rows only;
+//   replicated-mesh   CoShell's linear statics: the whole mesh, but a
+//                     Trilinos pattern of this rank's rows only;
 //   fullydistributed  a parallel::fullydistributed::Triangulation built from
 //                     a METIS-partitioned description (rank 0 builds the
 //                     serial mesh once), a Trilinos pattern of owned rows
