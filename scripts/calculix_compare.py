@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Peer comparison with CalculiX (issue 4): the clamped plate and the
+"""Peer comparison with CalculiX: the clamped plate and the
 Scordelis-Lo roof solved by CalculiX shells on the meshes coshell uses,
 timed against coshell on the same machine, in the same run.
 
