@@ -74,20 +74,76 @@ def anchor(title):
     return slug.replace(" ", "-")
 
 
+def numbered(title):
+    """'Contact / Obstacle 3' -> ('Contact / Obstacle', 3), else None."""
+    match = re.match(r"^(.*\S) (\d+)$", title)
+    return (match.group(1), int(match.group(2))) if match else None
+
+
+def described(section):
+    """What the reference prints of a subsection's entries."""
+    return [(name, str(entry["default_value"]),
+             entry.get("pattern_description", ""),
+             entry.get("documentation", "")) for name, entry in section]
+
+
+def common_description(members):
+    """The entries the numbered subsections 'members' ((number, section)
+    pairs) share, a default that names its own subsection's number
+    written with k (Contact/Obstacle 3/Name = obstacle 3: obstacle k); None
+    when they differ otherwise."""
+    listed = [described(section) for _, section in members]
+    common = []
+    for rows in zip(*listed):
+        if any(row[0] != rows[0][0] or row[2:] != rows[0][2:]
+               for row in rows) or len({len(x) for x in listed}) > 1:
+            return None
+        defaults = {row[1] for row in rows}
+        if len(defaults) > 1:
+            with_k = {re.sub(rf"\b{number}\b", "k", row[1])
+                      for (number, _), row in zip(members, rows)}
+            if len(with_k) > 1:
+                return None
+            defaults = with_k
+        common.append((rows[0][0], defaults.pop(), rows[0][2], rows[0][3]))
+    return common
+
+
+def merge_numbered(sections):
+    """Subsections that differ only by their number (Stage 1 ... Stage 8)
+    and declare the same entries are listed once, as 'Stage k'."""
+    merged, groups = {}, {}
+    for title, section in sections.items():
+        number = numbered(title)
+        if number:
+            groups.setdefault(number[0], []).append((number[1], section))
+    for title, section in sections.items():
+        number = numbered(title)
+        members = groups.get(number[0], []) if number else []
+        common = common_description(members) if len(members) > 1 else None
+        if common is not None:
+            numbers = sorted(m[0] for m in members)
+            key = f"{number[0]} k (k = {numbers[0]} to {numbers[-1]})"
+            merged.setdefault(key, common)
+        else:
+            merged[title] = described(section)
+    return merged
+
+
 def markdown(entries):
     sections = {}
     for path, name, entry in entries:
         sections.setdefault(" / ".join(path) or "(top level)", []).append(
             (name, entry))
+    sections = merge_numbered(sections)
     lines = [HEADER, "## Subsections", ""]
     for title in sections:
         lines.append(f"- [{title}](#{anchor(title)})")
     for title, section in sections.items():
         lines += ["", f"## {title}", ""]
-        for name, entry in section:
-            default = one_line(entry["default_value"])
-            accepts = one_line(entry.get("pattern_description", ""))
-            documentation = one_line(entry.get("documentation", ""))
+        for name, default, accepts, documentation in section:
+            default, accepts = one_line(default), one_line(accepts)
+            documentation = one_line(documentation)
             lines.append(f"- **`{name}`** = `{default}` · accepts "
                          f"`{accepts}`")
             if documentation:
