@@ -148,21 +148,35 @@ def cylinder(run, bending_stiffness=1.0, length=3.3, radius=2.0,
     above = [x for x in ratio if x * wrap_moment >= bending_stiffness / r]
     reference = [1e3 * (x * wrap_moment - bending_stiffness / r) * factor
                  for x in above]
-    fig, (a, b) = plt.subplots(1, 2, figsize=(9, 3.4))
-    a.plot(ratio, force, "C0.", ms=3, label="CoShell, |f| of the cylinder")
-    a.plot(above, reference, "k-", lw=1, label="curved beam (Castigliano)")
+    rotation = column(steps, "tip_rotation")
+    fig, (a, b, c) = plt.subplots(1, 3, figsize=(11, 3.4))
+    a.plot(ratio, rotation, "C0.", ms=3, label="CoShell")
+    a.plot([0, 1], [0, wrap_moment * length / bending_stiffness], "k-",
+           lw=1, label="free arc, M L / EI")
     a.axvline(1.0, color="0.6", lw=0.6)
     a.set_xlabel("M / M*")
-    a.set_ylabel("contact force (mN)")
+    a.set_ylabel("tip rotation (rad)")
     a.grid(True, lw=0.3)
     a.legend(fontsize=8)
-    finite = [(x, g) for x, g in zip(ratio, gap) if math.isfinite(g)]
-    b.semilogy([x for x, _ in finite], [g for _, g in finite], "C3.", ms=3)
+    near = [i for i, x in enumerate(ratio) if x >= 0.95]
+    b.plot([ratio[i] for i in near], [force[i] for i in near], "C0.", ms=4,
+           label="CoShell, |f| on the cylinder")
+    b.plot(above, reference, "k-", lw=1, label="curved beam (Castigliano)")
     b.axvline(1.0, color="0.6", lw=0.6)
     b.set_xlabel("M / M*")
-    b.set_ylabel("min_distance (mm)")
-    b.set_title("smallest gap over the step's iterates", fontsize=10)
-    b.grid(True, which="both", lw=0.3)
+    b.set_ylabel("contact force (mN)")
+    b.grid(True, lw=0.3)
+    b.legend(fontsize=8)
+    finite = [(x, g) for x, g in zip(ratio, gap) if math.isfinite(g)]
+    c.plot([x for x, _ in finite], [1e3 * g for _, g in finite], "C3.",
+           ms=4)
+    c.axhline(1.0, color="0.6", lw=0.6)
+    c.text(1.002, 0.97, "activation distance", fontsize=8, va="top")
+    c.set_ylim(0, 1.1)
+    c.set_xlabel("M / M*")
+    c.set_ylabel("min_distance (um)")
+    c.set_title("smallest gap (none in reach below M*)", fontsize=10)
+    c.grid(True, lw=0.3)
     fig.suptitle("Strip wrapped on a cylinder", fontsize=11)
     save(fig, "strip_on_cylinder.png")
 
