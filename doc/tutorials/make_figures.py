@@ -188,7 +188,8 @@ def injection(run):
     x = column(table, "plunger_displacement")
     f = [1e3 * v for v in column(table, "force_n")]
     fig, (a, b) = plt.subplots(1, 2, figsize=(9, 3.4))
-    push = [i for i, v in enumerate(x) if i == 0 or v >= x[i - 1]]
+    push_time = 1.3 + (15 + 6.9) / 5  # rod_out_time + stroke / speed, s
+    push = [i for i, v in enumerate(t) if v <= push_time + 1e-9]
     a.plot([x[i] for i in push], [f[i] for i in push], "C0-", lw=0.8)
     a.set_xlabel("plunger travel (mm)")
     a.set_ylabel("plunger force (mN)")
@@ -198,7 +199,7 @@ def injection(run):
     b.set_xlabel("time (s)")
     b.set_ylabel("plunger force (mN)")
     b.set_xlim(0, min(max(t), 8))
-    for edge, name in ((1.3, "push"), (5.68, "deploy")):
+    for edge, name in ((1.3, "push"), (push_time, "deploy")):
         b.axvline(edge, color="0.6", lw=0.6)
         b.text(edge + 0.05, 0.95 * max(f), name, fontsize=8)
     b.set_title("stages 1 to 3", fontsize=10)
