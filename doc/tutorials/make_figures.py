@@ -3,7 +3,9 @@
 of the tutorials' runs.
 
 Run the tutorials' commands first (their output directories under
-/tmp/tutorials/, as each tutorial gives them), then
+/tmp/tutorials/, as each tutorial gives them; the injection's checker
+with --figures /tmp/tutorials/injection/png, whose deployment sequence
+is copied at a smaller size), then
 
     /usr/bin/python3 doc/tutorials/make_figures.py [--runs /tmp/tutorials]
         [--only clamped cantilever vibration cylinder injection]
@@ -182,31 +184,53 @@ def cylinder(run, bending_stiffness=1.0, length=3.3, radius=2.0,
 
 
 def injection(run):
-    """Tutorial 5: the plunger force against its travel and in time."""
+    """Tutorial 5: the plunger force against its travel, and the optic's
+    width across the axis (its rims at y = +-3 mm) in time."""
     table = rows(os.path.join(run, "plunger_force.csv"))
     t = column(table, "time")
     x = column(table, "plunger_displacement")
     f = [1e3 * v for v in column(table, "force_n")]
-    fig, (a, b) = plt.subplots(1, 2, figsize=(9, 3.4))
     push_time = 1.3 + (15 + 6.9) / 5  # rod_out_time + stroke / speed, s
+    fig, (a, b) = plt.subplots(1, 2, figsize=(9, 3.4))
     push = [i for i, v in enumerate(t) if v <= push_time + 1e-9]
     a.plot([x[i] for i in push], [f[i] for i in push], "C0-", lw=0.8)
     a.set_xlabel("plunger travel (mm)")
     a.set_ylabel("plunger force (mN)")
-    a.set_title("while the plunger advances", fontsize=10)
+    a.set_title("the push (stage 2)", fontsize=10)
     a.grid(True, lw=0.3)
-    b.plot(t, f, "C0-", lw=0.8)
-    b.set_xlabel("time (s)")
-    b.set_ylabel("plunger force (mN)")
-    b.set_xlim(0, min(max(t), 8))
+    history = [r for r in rows(os.path.join(run, "time_history.csv"))
+               if float(r["time"]) <= push_time + 1.0 + 1e-9]
+    th = column(history, "time")
+    width = [math.hypot(6 + float(r["rim_yp_uy"]) - float(r["rim_ym_uy"]),
+                        float(r["rim_yp_uz"]) - float(r["rim_ym_uz"]))
+             for r in history]
+    centre = column(history, "optic_ux")
+    inside = [tt for tt, c in zip(th, centre) if 11.5 <= c <= 15]
+    if inside:
+        b.axvspan(min(inside), max(inside), color="C1", alpha=0.2,
+                  label="optic's centre in the nozzle")
+    b.plot(th, width, "C0-", lw=1, label="optic's width (rim to rim)")
+    b.axhline(3.5, color="k", lw=0.8, ls="--", label="nozzle, 3.5 mm")
     for edge, name in ((1.3, "push"), (push_time, "deploy")):
         b.axvline(edge, color="0.6", lw=0.6)
-        b.text(edge + 0.05, 0.95 * max(f), name, fontsize=8)
-    b.set_title("stages 1 to 3", fontsize=10)
+        b.text(edge + 0.05, 6.3, name, fontsize=8)
+    b.set_ylim(0, 6.8)
+    b.set_xlabel("time (s)")
+    b.set_ylabel("mm")
+    b.set_title("stages 1 to 3: fold, push, deploy", fontsize=10)
     b.grid(True, lw=0.3)
-    fig.suptitle("IOL injection: the plunger's push on the lens",
-                 fontsize=11)
+    b.legend(fontsize=7, loc="lower left")
+    fig.suptitle("IOL injection", fontsize=11)
     save(fig, "iol_plunger_force.png")
+    sequence = os.path.join(run, "png", "injection_sequence.png")
+    if os.path.exists(sequence):
+        from PIL import Image
+        image = Image.open(sequence).convert("RGB")
+        image = image.resize((1200, round(1200 * image.height / image.width)),
+                             Image.LANCZOS)
+        path = os.path.join(HERE, "iol_injection_sequence.png")
+        image.quantize(colors=96).save(path, optimize=True)
+        print("wrote", path)
 
 
 FIGURES = {"clamped": clamped, "cantilever": cantilever,
