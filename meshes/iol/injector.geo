@@ -10,7 +10,8 @@
 // wings' radius (chamber_half_width = chamber_half_height = 2) that takes
 // the lens already folded by the wings. The defaults below are a flat
 // chamber whose taper would fold the lens as it is pushed: the lens jams
-// in it, which is why the scene folds with wings (doc/validation.md).
+// in it, which is why the scene folds with wings
+// (doc/validation/iol-injection.md, "Why wings and not a taper").
 SetFactory("OpenCASCADE");
 DefineConstant[
   refinement_level = 0,

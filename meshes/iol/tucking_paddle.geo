@@ -11,7 +11,9 @@ DefineConstant[
   refinement_level = 0,
   inner_x = -3.8,      // mm, signed: the blade's inner edge
   blade_length = 3.2,  // mm, outwards from the inner edge (3.6 mm blades
-                       // meet over the optic: doc/validation.md)
+                       // meet over the optic:
+                       // doc/validation/iol-injection.md,
+                       // "The tuck (stage 1)")
   y_low = 1.6,         // mm, how far the side = -1 paddle reaches to -y
   y_high = 4.3,        // mm, how far it reaches to +y
   blade_z = -0.275,    // mm
