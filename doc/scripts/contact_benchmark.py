@@ -127,7 +127,8 @@ def method_rows(coshell, work):
     rows = []
     for method in ("barrier", "penalty"):
         for mu in (0.0, 0.1):
-            # Friction needs the energy line search (doc/theory.md 19).
+            # Friction needs the energy line search (doc/theory/contact.md,
+            # section 19.7).
             summary = run(coshell, "funnel.prm", os.path.join(work, f"f-{method}-{mu}"),
                           [f"Contact/Method={method}",
                            f"Contact/Obstacle 1/Friction coefficient={mu}",

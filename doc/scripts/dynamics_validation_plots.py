@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """Conservation and order plots of the dynamics validation
-(doc/validation.md, "Dynamics and stages"): runs the free-flying plate
+(doc/validation/dynamics.md, "Integrators, conservation, order and
+restart"): runs the free-flying plate
 with each integrator and the time-step study, and writes to
 doc/validation/dynamics/
   free_flying_conservation.csv/.png  relative drift of the total energy and

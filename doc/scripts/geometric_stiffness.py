@@ -1,8 +1,8 @@
 #!/usr/bin/python3
 """Newton iterations and time with the exact local forces in the
 co-rotational tangent's geometric terms and with the forces extrapolated
-from the previous iterate (Nonlinear solver/Geometric stiffness; doc/
-theory.md 13.4), on every nonlinear benchmark of prm/benchmarks and on
+from the previous iterate (Nonlinear solver/Geometric stiffness;
+doc/theory/corotational.md, section 13.4), on every nonlinear benchmark of prm/benchmarks and on
 three dynamic scenes, one binary, one run after another in one invocation.
 
   /usr/bin/python3 doc/scripts/geometric_stiffness.py --coshell BIN \

@@ -3,7 +3,8 @@
 two updates of the simulation?
 
 A device drives the plunger of the IOL injection (prm/iol/injection.prm,
-default lens, the plunger on its `Input direction` as in the README)
+default lens, the plunger on its `Input direction` as in
+doc/user-guide/interactive.md, "Driven obstacles")
 after the fold: s(t) = v (t - 1.3 s) + A sin(2 pi f (t - 1.3 s)), a push
 with a tremor. The reference run of the interactive protocol sends the
 device's position every millisecond, so its step at each millisecond

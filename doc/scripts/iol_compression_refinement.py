@@ -4,9 +4,10 @@
 tests/scripts/check_compression.py): the lens's gmsh sizes halved from
 the default (optic 0.55, haptic 0.22 mm: about two triangles across a
 haptic) twice, one thread, one run after another. Per mesh: triangles,
-the clamp force at the diameters of doc/validation.md's table, the
-initial stiffness per clamp (a straight-line fit of the force against
-one clamp's travel while D goes from 12.9 to 12.6 mm) and the optic's
+the clamp force at the diameters of the table in
+doc/validation/iol-haptic-and-compression.md ("The whole lens: ISO
+11979-3 compression"), the initial stiffness per clamp (a straight-line
+fit of the force against one clamp's travel while D goes from 12.9 to 12.6 mm) and the optic's
 decentration, axial displacement and tilt at 10 mm. A last row
 extrapolates the force at 10 mm and the initial stiffness from the three
 meshes (Richardson, with the order they show). Writes
@@ -42,9 +43,10 @@ SCENE = os.path.join(ROOT, "prm", "iol", "compression_iso11979.prm")
 CHECKER = os.path.join(ROOT, "tests", "scripts", "check_compression.py")
 # (optic, haptic) gmsh sizes in mm: the default lens, halved, quartered.
 MESHES = [(0.55, 0.22), (0.275, 0.11), (0.1375, 0.055)]
-DIAMETERS = (12.6, 12.1, 11.6, 11.1, 10.6, 10.0)  # mm, validation.md's
+DIAMETERS = (12.6, 12.1, 11.6, 11.1, 10.6, 10.0)  # mm, that table's
 # Castigliano's initial stiffness of the square-cut C-loop loaded at its
-# farthest point (doc/validation.md, "one haptic against Castigliano").
+# farthest point (doc/validation/iol-haptic-and-compression.md, "One
+# C-loop haptic against Castigliano").
 CASTIGLIANO_MN_PER_MM = 0.0321
 # The extrapolated row's order of convergence, per column extrapolated.
 ORDER_COLUMNS = {"initial_stiffness_mn_per_mm": "initial_stiffness_order",

@@ -2,7 +2,7 @@
 """Runs the co-rotational benchmarks of prm/benchmarks with the consistent
 and with the paper's tangent, and the stability cases of
 tests/nonlinear_tests.cmake, and writes the tables and plots used by
-doc/validation.md (section "Co-rotational formulation") and
+doc/validation/corotational.md and
 doc/performance/nonlinear.md (section "Consistent against paper tangent:
 wall time").
 

@@ -1,5 +1,6 @@
 #!/usr/bin/python3
-"""Independent check of the paper's plate element (doc/validation.md).
+"""Independent check of the paper's plate element (doc/validation/plates.md,
+"The paper's element (Przemieniecki)").
 
 A small NumPy/SciPy re-implementation of the bending part only of CoShell's
 clamped square plate (L = 10, D = 100, q = 1, lumped load, all boundary
