@@ -39,7 +39,7 @@ from check_injection import (TRAILING_END_X, column,  # noqa: E402
                              optic_in_nozzle, plunger_rows, rim_chord,
                              travel_measures)
 from iol_refinement import OUT, PLUNGER, lens_command  # noqa: E402
-from scene_runner import read_rows, surgical_real_time_factor  # noqa: E402
+from coshell_checks import read_rows, surgical_real_time_factor  # noqa: E402
 
 import matplotlib  # noqa: E402
 matplotlib.use("Agg")

@@ -46,7 +46,7 @@ from doc_common import (ROOT, finish_plot, largest_strains,  # noqa: E402
                         machine_and_commit, read_csv, write_csv)
 sys.path.insert(0, os.path.join(ROOT, "tests", "scripts"))
 from check_injection import plunger_rows, travel_measures  # noqa: E402
-from scene_runner import read_rows, surgical_real_time_factor  # noqa: E402
+from coshell_checks import read_rows, surgical_real_time_factor  # noqa: E402
 
 import matplotlib  # noqa: E402
 matplotlib.use("Agg")
