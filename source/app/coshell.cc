@@ -1,9 +1,9 @@
 // coshell: runs one scene (a .prm file) and writes VTU/PVD, summary.json
 // and, for refinement studies, convergence.csv.
 
+#include <coshell/base/parallel_environment.h>
 #include <coshell/driver/interruption.h>
 #include <coshell/driver/scene.h>
-#include <coshell/solvers/parallel_environment.h>
 
 #include <cstring>
 #include <iostream>
@@ -137,7 +137,7 @@ namespace
     if (line.interactive && !line.restart_file.empty())
       throw std::invalid_argument("--restart and --interactive do not go "
                                   "together");
-    if (line.interactive && coshell::solvers::distributed())
+    if (line.interactive && coshell::base::distributed())
       throw std::invalid_argument("--interactive runs on one rank; start it "
                                   "without mpirun");
     if (line.interactive)
@@ -177,10 +177,10 @@ namespace
 int main(int argc, char **argv)
 {
   // Serial runs start MPI lazily (see ensure_mpi_initialized).
-  if (coshell::solvers::launched_by_mpi_launcher())
-    coshell::solvers::ensure_mpi_initialized();
+  if (coshell::base::launched_by_mpi_launcher())
+    coshell::base::ensure_mpi_initialized();
   // Under mpirun every rank runs the scene; rank 0 alone logs and writes.
-  if (!coshell::solvers::writes_output())
+  if (!coshell::base::writes_output())
     std::cout.rdbuf(new DiscardingBuffer); // lives as long as std::cout
   CommandLine line;
   try
@@ -211,7 +211,7 @@ int main(int argc, char **argv)
   {
     std::cerr << "coshell: error: " << error.what() << "\n";
     // An error on some ranks only would leave the others waiting.
-    coshell::solvers::abort_other_ranks(1);
+    coshell::base::abort_other_ranks(1);
     return 1;
   }
 }

@@ -1,8 +1,8 @@
+#include <coshell/base/stopwatch.h>
 #include <coshell/contact/barrier.h>
 #include <coshell/contact/ccd.h>
 #include <coshell/contact/contact.h>
 #include <coshell/contact/distances.h>
-#include <coshell/solvers/stopwatch.h>
 
 #include <algorithm>
 #include <cmath>
@@ -223,7 +223,7 @@ namespace coshell::contact
                  0),
           k);
     }
-    const solvers::Stopwatch watch(timing_.tree_build);
+    const base::Stopwatch watch(timing_.tree_build);
     return pack_rtree(boxes);
   }
 
@@ -322,7 +322,7 @@ namespace coshell::contact
   using namespace dealii;
   namespace bgi = boost::geometry::index;
 
-  using solvers::Stopwatch;
+  using base::Stopwatch;
 
   bool Contact::filters_steps() const
   {

@@ -36,7 +36,7 @@ namespace coshell::contact
     /// exclusion list once is cheaper than a binary search per hit: a
     /// vertex's box of reach overlaps much of its own excluded
     /// neighbourhood, some (t/h)^2 triangles, and on a fine lens those
-    /// searches show in a fold's profile (doc/performance.md).
+    /// searches show in a fold's profile (doc/performance/contact.md).
     class ExclusionMarks
     {
     public:
@@ -280,7 +280,7 @@ namespace coshell::contact
     // A quarter of the thickness: on the IOL push the filter and the
     // search take least with it among 0.1, 0.25, 0.5 and 1 times the
     // thickness (wider lists cost more to screen than their rebuilds
-    // save; doc/performance.md).
+    // save; doc/performance/contact.md).
     return 0.25 * largest_thickness_;
   }
 

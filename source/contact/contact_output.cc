@@ -1,5 +1,5 @@
+#include <coshell/base/parallel_environment.h>
 #include <coshell/contact/contact.h>
-#include <coshell/solvers/parallel_environment.h>
 
 #include <cmath>
 #include <fstream>
@@ -33,7 +33,7 @@ namespace coshell::contact
 
   void Contact::write_obstacles_vtu(const std::string &file) const
   {
-    if (!solvers::writes_output())
+    if (!base::writes_output())
       return;
     std::ofstream out(file);
     if (!out)

@@ -1,10 +1,10 @@
 // Finding the contact pairs of the shell and the obstacles, and their
 // forces and stiffness.
 
+#include <coshell/base/stopwatch.h>
 #include <coshell/contact/barrier.h>
 #include <coshell/contact/contact.h>
 #include <coshell/contact/distances.h>
-#include <coshell/solvers/stopwatch.h>
 
 #include <algorithm>
 #include <chrono>
@@ -335,7 +335,7 @@ namespace coshell::contact
       box.extend(inflation);
       boxes.emplace_back(box, k);
     }
-    const solvers::Stopwatch watch(timing_.tree_build);
+    const base::Stopwatch watch(timing_.tree_build);
     return pack_rtree(boxes);
   }
 

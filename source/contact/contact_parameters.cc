@@ -38,10 +38,12 @@ namespace coshell::contact
       prm.declare_entry(
           "Barrier stiffness scale", "material",
           Patterns::Selection("material|load"),
-          "Barrier, with Barrier stiffness = 0: what sets kappa. material: E / (h b''(d/2)), above, for contact pressures "
+          "Barrier, with Barrier stiffness = 0: what sets kappa. material: E / "
+          "(h b''(d/2)), above, for contact pressures "
           "of the order of the shell's own stiffness (folding, pushing). "
           "load: q / |b'(d/2)|, q the mean dead load per area of the shell "
-          "(force/length^2: the magnitudes of the vertex forces of gravity, pressure, "
+          "(force/length^2: the magnitudes of the vertex forces of gravity, "
+          "pressure, "
           "point and edge forces, over the shell's area), so that the barrier "
           "carries the scene's own load at half the activation distance: for "
           "a shell resting on an obstacle or on itself under a light load, "
@@ -124,8 +126,8 @@ namespace coshell::contact
           "where Newton already struggles. A floor weakens friction on "
           "slow slip: a vertex slipping at speed v is resisted by about "
           "v dt / (this) of Coulomb's force while v dt is below it, so "
-          "the force depends on the time step (doc/validation.md, "
-          "doc/performance.md). Unit: length (mm in the IOL scenes).");
+          "the force depends on the time step (doc/validation/contact.md, "
+          "doc/performance/iol.md). Unit: length (mm in the IOL scenes).");
       prm.declare_entry(
           "Edge-edge pairs", "true", Patterns::Bool(),
           "Also keep shell edges from obstacle edges (and, with Self "

@@ -1,6 +1,6 @@
+#include <coshell/base/csv_file.h>
+#include <coshell/base/expressions.h>
 #include <coshell/contact/obstacle.h>
-#include <coshell/io/csv_file.h>
-#include <coshell/io/expressions.h>
 #include <coshell/mesh/mesh.h>
 
 #include <deal.II/base/utilities.h>
@@ -265,7 +265,7 @@ namespace coshell::contact
             quoted + " is not a plain file name NAME.csv (letters, digits, "
                      "'_', '-', '.'; no path): it is written to the output "
                      "directory");
-      const auto &taken = io::run_csv_files();
+      const auto &taken = base::run_csv_files();
       if (std::find(taken.begin(), taken.end(), file) != taken.end() ||
           ends_with(".vertices.csv"))
         throw std::invalid_argument(quoted + " is a file the run writes "
@@ -311,7 +311,7 @@ namespace coshell::contact
       }
       catch (...)
       {
-        obstacle.friction_of_time = io::parse_expressions<1>(
+        obstacle.friction_of_time = base::parse_expressions<1>(
             text, 1, "x,t", true, "t", where + "/Friction coefficient");
         obstacle.friction_coefficient = obstacle.friction_at(0);
       }

@@ -1,5 +1,5 @@
+#include <coshell/base/parallel_environment.h>
 #include <coshell/driver/interruption.h>
-#include <coshell/solvers/parallel_environment.h>
 
 #include <csignal>
 
@@ -25,6 +25,6 @@ namespace coshell::driver
   {
     // mpirun forwards the signal to every rank, but not at the same
     // instant: the ranks agree, so that all stop at the same step.
-    return solvers::largest_over_ranks(received_signal);
+    return base::largest_over_ranks(received_signal);
   }
 } // namespace coshell::driver

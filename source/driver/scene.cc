@@ -1,9 +1,15 @@
 #include <coshell/driver/scene.h>
 
+#include <coshell/driver/analyses.h>
+#include <coshell/driver/contributions.h>
+#include <coshell/driver/postprocessors.h>
+
 #include "energy_guard.h"
-#include "staged_output.h"
-#include <coshell/io/csv_file.h>
-#include <coshell/io/expressions.h>
+#include <coshell/base/csv_file.h>
+#include <coshell/base/expressions.h>
+#include <coshell/base/parallel_environment.h>
+#include <coshell/driver/linear_static.h>
+#include <coshell/driver/staged_output.h>
 #include <coshell/io/results.h>
 #include <coshell/model/external_loads.h>
 #include <coshell/model/inertia.h>
@@ -13,9 +19,7 @@
 #include <coshell/model/shell_model.h>
 #include <coshell/model/shell_problem.h>
 #include <coshell/model/shell_state.h>
-#include <coshell/solvers/linear_static.h>
 #include <coshell/solvers/modal_analysis.h>
-#include <coshell/solvers/parallel_environment.h>
 
 #include <algorithm>
 #include <cctype>
@@ -115,21 +119,6 @@ namespace coshell::driver
 
   namespace
   {
-    void declare_modal_analysis_entries(ParameterHandler &prm)
-    {
-      prm.enter_subsection("Modal analysis");
-      prm.declare_entry("Number of modes", "6", Patterns::Integer(1),
-                        "Analysis/Type = modes: how many of the lowest natural "
-                        "frequencies to compute. Unit: dimensionless (a "
-                        "count).");
-      prm.declare_entry("Shift", "0", Patterns::Double(),
-                        "sigma of the shift-invert Lanczos iteration, in "
-                        "omega^2 units: the modes nearest it are found. A "
-                        "negative value lets an unsupported structure (with "
-                        "rigid-body modes) be analysed. Unit: 1/time^2 "
-                        "(1/s^2).");
-      prm.leave_subsection();
-    }
 
     void declare_analysis_entries(ParameterHandler &prm)
     {
@@ -171,7 +160,7 @@ namespace coshell::driver
           "still summed over every step, so each row's energy balance holds "
           "as with 1. A haptic loop that reads only the interactive replies "
           "saves those passes over the elements, a noticeable part of a "
-          "linearized step (doc/performance.md). Peaks between rows are "
+          "linearized step (doc/performance/iol.md). Peaks between rows are "
           "not seen, and a run that fails keeps the rows up to its last "
           "multiple of n. Unit: dimensionless (a step count).");
       prm.leave_subsection();
@@ -180,7 +169,7 @@ namespace coshell::driver
 
   void Scene::declare_parameters(ParameterHandler &prm)
   {
-    io::Constants::declare_parameters(prm);
+    base::Constants::declare_parameters(prm);
     mesh::MeshParameters::declare_parameters(prm);
     model::ElementParameters::declare_parameters(prm);
     model::BoundaryConditions::declare_parameters(prm);
@@ -188,17 +177,18 @@ namespace coshell::driver
     model::QuantitiesOfInterest::declare_parameters(prm);
     solvers::LinearSolver::declare_parameters(prm);
     solvers::PathFollowing::declare_parameters(prm);
+    model::TangentSettings::declare_parameters(prm);
     model::CorrectionLimits::declare_parameters(prm);
     model::PrescribedMotions::declare_parameters(prm);
     model::InertiaParameters::declare_parameters(prm);
     contact::ContactParameters::declare_parameters(prm);
-    declare_modal_analysis_entries(prm);
+    ModalAnalysis::declare_parameters(prm);
     solvers::TimeIntegration::declare_parameters(prm);
     Stages::declare_parameters(prm);
     declare_analysis_entries(prm);
     io::VtuOutput::declare_parameters(prm);
     declare_output_entries(prm);
-    solvers::ThreadSettings::declare_parameters(prm);
+    base::ThreadSettings::declare_parameters(prm);
   }
 
   void Scene::parse_parameters(ParameterHandler  &prm,
@@ -206,7 +196,7 @@ namespace coshell::driver
   {
     prm_file_ = prm_file;
     // First: every expression parsed below may use the constants.
-    io::Constants::parse_parameters(prm);
+    base::Constants::parse_parameters(prm);
     mesh_.parse_parameters(
         prm, std::filesystem::path(prm_file).parent_path().string());
     element_.parse_parameters(prm);
@@ -215,35 +205,34 @@ namespace coshell::driver
     quantities_.parse_parameters(prm);
     linear_solver_.parse_parameters(prm);
     path_following_.parse_parameters(prm);
+    tangent_settings_.parse_parameters(prm);
     correction_limits_.parse_parameters(prm);
     prm.enter_subsection("Analysis");
-    analysis_type_ = prm.get("Type");
+    analysis_type_ = analysis_type(prm.get("Type"));
     prm.leave_subsection();
     motions_.parse_parameters(prm);
     inertia_.parse_parameters(prm);
     contact_.parse_parameters(
         prm, std::filesystem::path(prm_file).parent_path().string());
-    prm.enter_subsection("Modal analysis");
-    n_modes_     = prm.get_integer("Number of modes");
-    modal_shift_ = prm.get_double("Shift");
-    prm.leave_subsection();
+    modal_analysis_.parse_parameters(prm);
     time_integration_.parse_parameters(prm);
     Stage single;
-    single.analysis = analysis_type_;
-    single.duration =
-        analysis_type_ == "dynamic" ? time_integration_.end_time() : 1.0;
+    single.analysis    = analysis_type_;
+    single.duration    = analysis_type_ == AnalysisType::dynamic
+                             ? time_integration_.end_time()
+                             : 1.0;
     single.load_factor = Stages::default_load_factor(analysis_type_);
     single.motions     = motions_.defined();
     stages_.parse_parameters(prm, motions_.defined(), single);
     if (stages_.staged())
-      analysis_type_ = "nonlinear static";
+      analysis_type_ = AnalysisType::nonlinear_static;
     check_analysis_choice();
     output_.parse_parameters(prm);
     prm.enter_subsection("Output");
     checkpoint_interval_        = prm.get_double("Checkpoint interval");
     steps_between_history_rows_ = prm.get_integer("Steps between history rows");
     prm.leave_subsection();
-    solvers::ThreadSettings().parse_parameters(prm);
+    base::ThreadSettings().parse_parameters(prm);
   }
 
   const io::VtuOutput &Scene::output() const
@@ -258,8 +247,8 @@ namespace coshell::driver
     const auto    start = std::chrono::steady_clock::now();
     mesh::Surface surface;
     mesh_.build(surface, level);
-    if (solvers::distributed())
-      mesh::partition(surface, solvers::n_ranks());
+    if (base::distributed())
+      mesh::partition(surface, base::n_ranks());
     model::ShellModel model(surface, element_, mesh_.normal_reference);
     linear_solver_.set_row_partition(model.locally_owned_dofs());
     require_mass(model.element_parameters().material.density);
@@ -268,8 +257,7 @@ namespace coshell::driver
         << model.n_dofs() << " dofs, " << element_.formulation_name()
         << " formulation\n";
 
-    io::LevelResult result =
-        (this->*analyses().at(analysis_type_))(model, directory, log);
+    io::LevelResult result = run_analysis(model, directory, log);
     result.wall_time_s.setup += setup;
     result.wall_time_s.total    = seconds_since(start);
     result.level                = level;
@@ -290,100 +278,37 @@ namespace coshell::driver
     return result.to_json();
   }
 
-  AffineConstraints<double>
-  Scene::support_constraints(const model::ShellModel &model) const
-  {
-    AffineConstraints<double> constraints;
-    boundary_conditions_.make_constraints(model, constraints);
-    constraints.close();
-    return constraints;
-  }
-
-  io::LevelResult Scene::solve_linear(const model::ShellModel &model,
+  io::LevelResult Scene::run_analysis(const model::ShellModel &model,
                                       const std::string       &directory,
                                       std::ostream            &log)
   {
-    io::LevelResult                 result;
-    auto                            phase = std::chrono::steady_clock::now();
-    const AffineConstraints<double> constraints = support_constraints(model);
-    solvers::LinearStatic           analysis(model, constraints,
-                                             linear_solver_.distributed_rows());
-    result.wall_time_s.setup = seconds_since(phase);
-
-    phase = std::chrono::steady_clock::now();
-    analysis.assemble(loads_, log);
-    result.wall_time_s.assemble = seconds_since(phase);
-
-    phase                           = std::chrono::steady_clock::now();
-    const Vector<double> solution   = analysis.solve(linear_solver_);
-    result.wall_time_s.solve        = seconds_since(phase);
-    result.linear_solver_iterations = linear_solver_.last_iterations();
-    if (linear_solver_.last_iterations() > 1)
-      log << "  " << linear_solver_.method() << ": "
-          << linear_solver_.last_iterations() << " iterations\n";
-
-    phase      = std::chrono::steady_clock::now();
-    result.qoi = quantities_.evaluate(model, solution);
-    output_.write(model, solution, model.resultants(solution), directory);
-    result.wall_time_s.output = seconds_since(phase);
-    result.n_inactive_dofs    = analysis.n_inactive_dofs();
-    return result;
-  }
-
-  namespace
-  {
-    std::string step_file_name(unsigned int       step,
-                               const std::string &stem = "solution")
+    switch (analysis_type_)
     {
-      std::ostringstream name;
-      name << stem << "-" << std::setw(5) << std::setfill('0') << step;
-      return name.str();
+    case AnalysisType::linear_static:
+      return LinearStaticAnalysis(boundary_conditions_, loads_, quantities_,
+                                  linear_solver_, output_)
+          .run(model, directory, log);
+    case AnalysisType::modes:
+      return modal_analysis_.run(model, boundary_conditions_, inertia_,
+                                 linear_solver_, output_, directory, log);
+    case AnalysisType::nonlinear_static:
+    case AnalysisType::dynamic:
+      return run_stages(model, directory, log);
     }
-
-    void write_reference_points(const model::QuantitiesOfInterest &quantities,
-                                const std::string                 &directory)
-    {
-      std::ostringstream csv;
-      csv << "qoi,load_factor,value\n" << std::setprecision(io::csv_digits);
-      for (const auto &[name, curve] : quantities.reference_curves())
-        for (const auto &[factor, value] : curve)
-          csv << name << ',' << factor << ',' << value << '\n';
-      io::write_file_atomically(directory + "/reference_points.csv", csv.str());
-    }
-
-    std::vector<std::string>
-    with_quantities(std::vector<std::string>             columns,
-                    const std::map<std::string, double> &quantities,
-                    const std::vector<std::string>      &after = {})
-    {
-      for (const auto &[name, value] : quantities)
-        columns.push_back(name);
-      columns.insert(columns.end(), after.begin(), after.end());
-      return columns;
-    }
-  } // namespace
-
-  const std::map<std::string, Scene::AnalysisRunner> &Scene::analyses()
-  {
-    static const std::map<std::string, AnalysisRunner> runners = {
-        {"linear static", &Scene::solve_linear},
-        {"nonlinear static", &Scene::run_stages},
-        {"dynamic", &Scene::run_stages},
-        {"modes", &Scene::solve_modes}};
-    return runners;
+    throw std::logic_error("Scene::run_analysis: no such AnalysisType");
   }
 
   bool Scene::has_dynamic_stage() const
   {
     for (const Stage &stage : stages_.list())
-      if (stage.analysis == "dynamic")
+      if (stage.analysis == AnalysisType::dynamic)
         return true;
     return false;
   }
 
   void Scene::require_mass(double mean_density) const
   {
-    if ((has_dynamic_stage() || analysis_type_ == "modes") &&
+    if ((has_dynamic_stage() || analysis_type_ == AnalysisType::modes) &&
         !(mean_density > 0))
       throw std::invalid_argument(
           "dynamics and modes need mass: Material/Density must be "
@@ -395,14 +320,14 @@ namespace coshell::driver
     // A density expression is checked once the mesh is there.
     if (element_.uniform_properties())
       require_mass(element_.material.density);
-    if ((analysis_type_ == "linear static" || analysis_type_ == "modes") &&
-        (stages_.staged() || !motions_.empty()))
+    const bool unstaged = analysis_type_ == AnalysisType::linear_static ||
+                          analysis_type_ == AnalysisType::modes;
+    if (unstaged && (stages_.staged() || !motions_.empty()))
       throw std::invalid_argument(
           "Analysis/Type = linear static runs no stages and no prescribed "
           "motions; set Analysis/Type = nonlinear static (or define the "
           "stages' Analysis type)");
-    if (contact_.enabled() &&
-        (analysis_type_ == "linear static" || analysis_type_ == "modes"))
+    if (contact_.enabled() && unstaged)
       throw std::invalid_argument(
           "Contact is nonlinear: Contact/Method = barrier or penalty needs "
           "Analysis/Type = nonlinear static or dynamic (or stages)");
@@ -411,7 +336,7 @@ namespace coshell::driver
           "Contact works with load control, not with the arc-length method "
           "(Nonlinear solver/Method): its predictor is not filtered for "
           "collisions");
-    if (analysis_type_ == "linear static" &&
+    if (analysis_type_ == AnalysisType::linear_static &&
         element_.formulation == model::Formulation::corotational)
       throw std::invalid_argument(
           "Analysis/Type = linear static solves the small-displacement "
@@ -421,25 +346,6 @@ namespace coshell::driver
 
   namespace
   {
-    /// The static contributions: internal force and external loads.
-    std::vector<std::unique_ptr<model::Contribution>>
-    static_contributions(const model::ShellModel     &model,
-                         const model::Loads          &loads,
-                         model::Formulation           kinematics,
-                         element::CorotationalTangent tangent,
-                         bool                         extrapolated_forces,
-                         bool                         exact_after_failure,
-                         std::ostream                &log)
-    {
-      std::vector<std::unique_ptr<model::Contribution>> contributions;
-      contributions.push_back(std::make_unique<model::InternalForce>(
-          model, kinematics, tangent, extrapolated_forces,
-          exact_after_failure));
-      contributions.push_back(std::make_unique<model::ExternalLoads>(
-          model, loads, kinematics == model::Formulation::corotational, log));
-      return contributions;
-    }
-
     /// The magnitudes of the dead loads' vertex forces over the shell's
     /// area, N/mm^2 (Contact/Barrier stiffness scale = load).
     double mean_dead_load_pressure(const model::ShellModel &model,
@@ -467,65 +373,6 @@ namespace coshell::driver
     }
   } // namespace
 
-  /// The lowest natural frequencies and mode shapes of the undeformed
-  /// configuration: K x = omega^2 M x with the supports (modes.csv, one
-  /// VTU per mode, omega_k in the quantities of interest).
-  io::LevelResult Scene::solve_modes(const model::ShellModel &model,
-                                     const std::string       &directory,
-                                     std::ostream            &log)
-  {
-    if (solvers::distributed())
-      throw std::invalid_argument("Analysis/Type = modes runs on one rank; "
-                                  "start it without mpirun");
-    io::LevelResult                 result;
-    auto                            phase = std::chrono::steady_clock::now();
-    const AffineConstraints<double> constraints = support_constraints(model);
-    if (modal_shift_ == 0)
-      model::check_supports(model, constraints);
-    model::ShellState                                 state(model, false);
-    std::vector<std::unique_ptr<model::Contribution>> inertia;
-    inertia.push_back(std::make_unique<model::Inertia>(model, inertia_));
-    model::ShellProblem  problem(model, state, constraints, std::move(inertia));
-    SparseMatrix<double> stiffness(problem.sparsity());
-    model.assemble_stiffness(constraints, stiffness);
-    // Modes run on one rank (checked above): the mass is a deal.II matrix.
-    solvers::TangentMatrix mass_tangent;
-    problem.reinit_tangent(mass_tangent);
-    problem.mass_matrix(mass_tangent);
-    SparseMatrix<double> &mass = mass_tangent.serial();
-    // Constrained rows: no mass, so their eigenvalues go to infinity.
-    for (unsigned int i = 0; i < mass.m(); ++i)
-      if (constraints.is_constrained(i))
-        mass.diag_element(i) = 0;
-    result.wall_time_s.assemble = seconds_since(phase);
-
-    phase = std::chrono::steady_clock::now();
-    std::vector<double>         eigenvalues;
-    std::vector<Vector<double>> modes;
-    solvers::lowest_modes(stiffness, mass, linear_solver_, modal_shift_,
-                          n_modes_, eigenvalues, modes);
-    result.wall_time_s.solve = seconds_since(phase);
-
-    phase = std::chrono::steady_clock::now();
-    std::ostringstream csv;
-    csv << "mode,frequency_hz,omega_rad_s\n"
-        << std::setprecision(io::csv_digits);
-    for (unsigned int k = 0; k < modes.size(); ++k)
-    {
-      const double omega = std::sqrt(std::max(eigenvalues[k], 0.0));
-      csv << k + 1 << ',' << omega / (2 * numbers::PI) << ',' << omega << '\n';
-      result.qoi["omega_" + std::to_string(k + 1)] = omega;
-      log << "  mode " << k + 1 << ": omega = " << omega
-          << " rad/s, f = " << omega / (2 * numbers::PI) << " Hz\n";
-      output_.write(model, modes[k], model.resultants(modes[k]), directory,
-                    "mode-" + std::to_string(k + 1), k + 1);
-    }
-    std::filesystem::create_directories(directory);
-    io::write_file_atomically(directory + "/modes.csv", csv.str());
-    result.wall_time_s.output = seconds_since(phase);
-    return result;
-  }
-
   AffineConstraints<double>
   Scene::stage_constraints(const model::ShellModel &model,
                            const Stage             &stage) const
@@ -540,146 +387,9 @@ namespace coshell::driver
         AffineConstraints<double>::MergeConflictBehavior::left_object_wins);
     motions.close();
     // Inertia, or contact with obstacles, may hold what supports do not.
-    if (stage.analysis != "dynamic" && !contact_.enabled())
+    if (stage.analysis != AnalysisType::dynamic && !contact_.enabled())
       model::check_supports(model, motions);
     return motions;
-  }
-
-  void Scene::write_step(const model::ShellModel &model,
-                         const model::ShellState &state,
-                         StagedOutput            &out,
-                         const std::string       &directory,
-                         unsigned int             step,
-                         double                   time)
-  {
-    const model::InternalForce           internal(model, element_.formulation,
-                                                  path_following_.tangent());
-    std::vector<io::VtuOutput::DofField> fields;
-    std::vector<std::string>             companions;
-    Vector<double>                       contact_fields;
-    if (out.contact && output_.writes_vtu())
-    {
-      contact_fields = out.contact->vertex_fields();
-      fields.push_back({{"contact_force", "contact_force", "contact_force",
-                         "contact_gap", "contact_pressure", "unused"},
-                        &contact_fields});
-      companions.push_back(step_file_name(step, "obstacles") + ".vtu");
-      std::filesystem::create_directories(directory);
-      out.contact->write_obstacles_vtu(directory + "/" + companions.back());
-    }
-    output_.write(model, state.values(), internal.resultants(state), directory,
-                  step_file_name(step), time, fields, companions);
-    out.last_written = step;
-  }
-
-  void
-  Scene::record_contact(StagedOutput &out, unsigned int step, double time) const
-  {
-    if (!out.contact)
-      return;
-    out.smallest_gap = std::min(out.smallest_gap, out.contact->smallest_gap());
-    out.largest_penetration =
-        std::max(out.largest_penetration, out.contact->largest_penetration());
-    const auto &loads = out.contact->obstacle_loads();
-    const auto  work  = out.contact->obstacle_work();
-    for (unsigned int o = 0; o < loads.size(); ++o)
-    {
-      std::vector<double> row = {double(step), time, double(o + 1)};
-      for (unsigned int d = 0; d < 3; ++d)
-        row.push_back(loads[o].force[d]);
-      for (unsigned int d = 0; d < 3; ++d)
-        row.push_back(loads[o].moment[d]);
-      row.push_back(loads[o].active_pairs);
-      row.push_back(out.contact->smallest_obstacle_gap(o));
-      row.push_back(work[o]);
-      const Tensor<1, 3> moved = out.contact->obstacle_displacement(o);
-      for (unsigned int d = 0; d < 3; ++d)
-        row.push_back(moved[d]);
-      out.contact_forces->row(row);
-    }
-    for (auto &[o, file] : out.obstacle_force_files)
-    {
-      const Tensor<1, 3> &direction =
-          out.contact->obstacles()[o].force_direction;
-      // loads[o].force is the shell's push on the obstacle ('0 -' writes
-      // no force as 0, not -0).
-      file.row({time, out.contact->obstacle_displacement(o) * direction,
-                0.0 - loads[o].force * direction});
-    }
-    // Self contact: obstacle 0, no net force (internal to the shell).
-    if (out.contact->self_contact())
-      out.contact_forces->row({double(step), time, 0, 0, 0, 0, 0, 0, 0,
-                               double(out.contact->self_active_pairs()),
-                               out.contact->smallest_self_gap(), 0, 0, 0, 0});
-  }
-
-  /// The quantities of interest of a dynamic step, with the largest
-  /// strains if asked for ('internal' null: before the first step, zero).
-  std::map<std::string, double>
-  Scene::step_quantities(const model::ShellModel    &model,
-                         const model::ShellState    &state,
-                         const model::InternalForce *internal) const
-  {
-    auto values = quantities_.evaluate(model, state.values());
-    if (quantities_.largest_strains())
-    {
-      model::LargestStrains largest;
-      if (internal)
-        largest = model::largest_strains(model, internal->resultants(state));
-      values["max_membrane_strain"] = largest.membrane;
-      values["max_bending_strain"]  = largest.bending;
-      values["max_surface_strain"]  = largest.surface;
-    }
-    return values;
-  }
-
-  void
-  Scene::write_history_row(const model::ShellProblem                  &problem,
-                           const solvers::TimeIntegration::StepRecord &record,
-                           unsigned int                                stage,
-                           StagedOutput                               &out,
-                           io::LevelResult                            &result,
-                           std::optional<double> known_strain_energy) const
-  {
-    const auto  &state    = problem.state();
-    const auto  *internal = problem.find<model::InternalForce>();
-    const auto   kinetic  = problem.find<model::Inertia>()->measures(state);
-    const double strain_energy = known_strain_energy
-                                     ? *known_strain_energy
-                                     : internal->strain_energy(state);
-    result.qoi              = step_quantities(problem.model(), state, internal);
-    std::vector<double> row = {double(out.step),
-                               record.time,
-                               record.dt,
-                               double(record.iterations),
-                               kinetic.kinetic_energy,
-                               strain_energy,
-                               out.external_work,
-                               out.dissipated_energy,
-                               kinetic.kinetic_energy + strain_energy};
-    for (unsigned int d = 0; d < 3; ++d)
-      row.push_back(kinetic.linear_momentum[d]);
-    for (unsigned int d = 0; d < 3; ++d)
-      row.push_back(kinetic.angular_momentum[d]);
-    row.push_back(out.contact_work);
-    row.push_back(out.contact ? out.contact->potential() : 0.0);
-    for (const auto &[name, value] : result.qoi)
-      row.push_back(value);
-    row.push_back(stage);
-    out.time_history->row(row);
-  }
-
-  /// The step's work of the contact forces on the shell (trapezoidal on
-  /// the step increment q).
-  void Scene::add_contact_work(const model::ShellProblem &problem,
-                               const Vector<double>      &q,
-                               StagedOutput              &out)
-  {
-    if (!out.contact)
-      return;
-    const Vector<double> &force = problem.force(model::ForceKind::contact);
-    out.contact_work += 0.5 * ((force * q) + (out.contact_force * q));
-    out.contact_force = force;
   }
 
   /// One dynamic stage as its step observer sees it: the stage, its
@@ -797,7 +507,7 @@ namespace coshell::driver
       out.damping_force = model.from_vertex_order(restart_->damping_force);
       // A restart from the stage's last step takes no step: its summary
       // reports the checkpoint's quantities.
-      run.result.qoi = step_quantities(model, state, internal);
+      run.result.qoi = step_quantities(quantities_, model, state, internal);
     }
     else if (std::isnan(run.result.initial_total_energy))
       run.result.initial_total_energy =
@@ -809,26 +519,6 @@ namespace coshell::driver
                         time_integration_.energy_growth_limit());
   }
 
-  void Scene::account_step_energies(DynamicStageRun &run)
-  {
-    auto           &out = run.out;
-    Vector<double> &g = run.working_force, &q = run.increment;
-    working_forces(run.problem, g);
-    // Displacement since the previous save (global axes, also with SE3).
-    run.problem.state().step_displacement(q);
-    out.external_work += 0.5 * ((g * q) + (out.generalized_force * q));
-    out.generalized_force = g;
-    run.problem.find<model::Inertia>()->damping_force(run.problem.state(),
-                                                      run.damping_force);
-    out.dissipated_energy +=
-        0.5 * ((run.damping_force * q) + (out.damping_force * q));
-    // Friction's dissipation over the step (0 without friction).
-    if (out.contact)
-      out.dissipated_energy += out.contact->step_friction_dissipation();
-    out.damping_force = run.damping_force;
-    add_contact_work(run.problem, q, out);
-  }
-
   void
   Scene::record_dynamic_step(DynamicStageRun                            &run,
                              const solvers::TimeIntegration::StepRecord &record)
@@ -836,17 +526,18 @@ namespace coshell::driver
     auto              &out     = run.out;
     const auto        &problem = run.problem;
     const unsigned int step    = ++out.step;
-    account_step_energies(run);
+    account_step_energies(run.problem, run.out, run.working_force,
+                          run.increment, run.damping_force);
     // Output/Steps between history rows: the stage's last step has a row
     // too, written before a checkpoint of that step records the rows. An
     // interactive run that stops inside the stage writes its last step's
     // row when it stops (finish_dynamic_stage).
     if (step % steps_between_history_rows_ == 0 || run.ends_stage(record.time))
     {
-      write_history_row(problem, record, run.stage.number, out, run.result,
-                        run.guard
-                            ? run.guard->accepted_strain_energy(record.time)
-                            : std::nullopt);
+      write_history_row(
+          quantities_, problem, record, run.stage.number, out, run.result,
+          run.guard ? run.guard->accepted_strain_energy(record.time)
+                    : std::nullopt);
       run.unwritten_row.reset();
     }
     else
@@ -860,16 +551,15 @@ namespace coshell::driver
     checkpoint_step(problem, out, run.stage, record.time, run.directory,
                     run.log);
     if (interactive_)
-      reply_step(run.problem, out, record.time,
-                 interactive_->real_time_factor(record.time));
+      reply_step(run.problem, out, record.time);
   }
 
   void Scene::finish_dynamic_stage(DynamicStageRun &run, double reached)
   {
     auto &result = run.result;
     if (run.unwritten_row)
-      write_history_row(run.problem, *run.unwritten_row, run.stage.number,
-                        run.out, result);
+      write_history_row(quantities_, run.problem, *run.unwritten_row,
+                        run.stage.number, run.out, result);
     result.simulated_time_s += reached - run.from;
     if (run.guard)
       result.energy_guard_rejections =
@@ -890,110 +580,14 @@ namespace coshell::driver
       throw std::invalid_argument(
           "--interactive drives one run: Mesh/Refinement levels lists " +
           std::to_string(mesh_.refinement_levels.size()) + " levels; give one");
-    interactive_.emplace();
-    interactive_->commands = &commands;
-    interactive_->replies  = &replies;
-    // The driven obstacles share one input path; the Contact made from
-    // these parameters keeps a handle on it.
-    for (auto &obstacle : contact_.obstacles)
-      if (obstacle.input_direction.norm() > 0)
-      {
-        if (!interactive_->input)
-          interactive_->input = std::make_shared<contact::InputPath>();
-        obstacle.input = interactive_->input;
-      }
-    if (interactive_->input && checkpoint_interval_ > 0)
+    interactive_.emplace(commands, replies);
+    interactive_->connect_driven_obstacles(contact_);
+    if (interactive_->drives_obstacles() && checkpoint_interval_ > 0)
       throw std::invalid_argument(
           "Output/Checkpoint interval: a checkpoint would not hold the "
           "input of the obstacles with an Input direction, and a restart "
           "would put them back on their Translation; set it to 0 with "
           "--interactive");
-  }
-
-  // Also called before a static stage, which runs whole, so its decision
-  // comes before it: a "quit" after a target at the end of the dynamic
-  // stage before it ends the run there instead of after the static stage.
-  void Scene::InteractiveSession::read_ahead(double now)
-  {
-    if (ended || target)
-      return;
-    target = next_target(now);
-    if (!target)
-    {
-      ended   = true;
-      reached = now;
-    }
-  }
-
-  // Interactive runs count only the time spent computing, not the time
-  // spent waiting for the next target.
-  double Scene::InteractiveSession::real_time_factor(double time) const
-  {
-    return (simulated_s + time - advance_from) /
-           std::max(computing_s + seconds_since(advance_started), 1e-9);
-  }
-
-  namespace
-  {
-    /// A protocol line "t" or "t s": the target time and the input.
-    struct Target
-    {
-      double                time;
-      std::optional<double> input;
-    };
-
-    std::optional<Target> parse_target(const std::string &line)
-    {
-      std::istringstream       words(line);
-      std::vector<std::string> parts{std::istream_iterator<std::string>(words),
-                                     std::istream_iterator<std::string>()};
-      if (parts.empty() || parts.size() > 2)
-        return std::nullopt;
-      // strtod reads "nan" and "inf" too: a target that is never reached
-      // or an obstacle sent to infinity.
-      const auto time = io::as_number(parts[0]);
-      if (!time || !std::isfinite(*time))
-        return std::nullopt;
-      if (parts.size() == 1)
-        return Target{*time, std::nullopt};
-      const auto input = io::as_number(parts[1]);
-      if (!input || !std::isfinite(*input))
-        return std::nullopt;
-      return Target{*time, *input};
-    }
-  } // namespace
-
-  std::optional<double> Scene::InteractiveSession::next_target(double now)
-  {
-    std::string line;
-    while (std::getline(*commands, line))
-    {
-      line = Utilities::trim(line);
-      if (line.empty() || line[0] == '#')
-        continue;
-      if (line == "quit")
-        return std::nullopt;
-      const auto target = parse_target(line);
-      if (!target)
-        *replies << "error cannot read '" << line
-                 << "' as a finite time in s, or a time and an input"
-                 << std::endl;
-      else if (target->input && !input)
-        *replies << "error '" << line
-                 << "': no obstacle takes input (Contact/Obstacle k/Input "
-                    "direction)"
-                 << std::endl;
-      else if (target->input && !(target->time > now))
-        *replies << "error '" << line << "': an input is for a time after "
-                 << "the present, " << now << " s" << std::endl;
-      else
-      {
-        if (target->input)
-          input->append(now, target->time, *target->input);
-        return target->time;
-      }
-    }
-    return std::nullopt;
   }
 
   double Scene::advance_dynamic_stage(
@@ -1013,137 +607,45 @@ namespace coshell::driver
                             &carry_, check);
       return end;
     }
-    auto      &session = *interactive_;
-    const auto advance = [&](double from, double to)
-    {
-      session.advance_from    = from;
-      session.advance_started = std::chrono::steady_clock::now();
-      time_integration_.run(problem, linear_solver_, path_following_.newton(),
-                            from, to, step, on_step, on_iteration, log, &carry_,
-                            check);
-      session.computing_s += seconds_since(session.advance_started);
-      session.simulated_s += to - from;
-    };
-    double now = start;
-    while (now < end && !session.ended)
-    {
-      session.read_ahead(now);
-      if (session.ended)
-        break;
-      const double to = std::min(*session.target, end);
-      if (to > now)
-        advance(now, to);
-      now = std::max(now, to);
-      if (*session.target <= now)
-      {
-        *session.replies << "done " << now << std::endl;
-        session.target.reset();
-      }
-    }
-    session.reached = now;
-    return now;
+    return interactive_->advance(
+        start, end,
+        [&](double from, double to)
+        {
+          time_integration_.run(problem, linear_solver_,
+                                path_following_.newton(), from, to, step,
+                                on_step, on_iteration, log, &carry_, check);
+        });
   }
 
   void Scene::reply_step(model::ShellProblem &problem,
                          const StagedOutput  &out,
-                         double               time,
-                         double               real_time_factor)
+                         double               time)
   {
-    auto &reply = *interactive_->replies;
-    reply << "step " << out.step << ' ' << time;
-    if (out.contact)
-      for (unsigned int o = 0; o < out.contact->obstacles().size(); ++o)
-      {
-        // A device renders the force along its own axis, with its sign:
-        // the magnitude counts the force across the axis too, and cannot
-        // tell a shell pushing the tool back from one dragging it along
-        // (friction).
-        const auto &force     = out.contact->obstacle_loads()[o].force;
-        const auto &direction = out.contact->obstacles()[o].input_direction;
-        reply << ' '
-              << (direction.norm() > 0 ? force * direction / direction.norm()
-                                       : force.norm());
-      }
-    const auto &model = problem.model();
-    Point<3>    centroid;
-    unsigned    n = 0;
-    for (unsigned int v = 0; v < model.surface().n_vertices(); ++v)
-      if (model.vertex_is_used(v))
-      {
-        centroid += model.surface().get_vertices()[v];
-        for (unsigned int d = 0; d < 3; ++d)
-          centroid[d] += problem.state().values()[model.vertex_dofs(v)[d]];
-        ++n;
-      }
-    centroid /= double(n);
-    reply << ' ' << centroid << ' ' << real_time_factor << std::endl;
-    if (interactive_->input && out.contact)
-      reply_input_slopes(problem, *out.contact, out.step, time);
+    interactive_->reply_step(problem, out.contact, out.step, time);
+    if (interactive_->drives_obstacles() && out.contact)
+      interactive_->reply_input_slopes(
+          problem, *out.contact, out.step, time, linear_solver_,
+          [&]()
+          {
+            // A linearized step's system is the step itself, and its
+            // factors serve; Newton's last factors may be an iterate
+            // behind, so the state reached gets its exact tangent.
+            if (!time_integration_.linearized())
+              solvers::Newton(path_following_.newton(), linear_solver_)
+                  .factorize_tangent(problem);
+          });
   }
 
-  namespace
+  void Scene::write_step(const model::ShellModel &model,
+                         const model::ShellState &state,
+                         StagedOutput            &out,
+                         const std::string       &directory,
+                         unsigned int             step,
+                         double                   time)
   {
-    /// dr/ds of the driven obstacles' common input, condensed.
-    Vector<double> input_load(const model::ShellProblem &problem,
-                              const contact::Contact    &contact)
-    {
-      const auto    &obstacles = contact.obstacles();
-      Vector<double> load(problem.model().n_dofs());
-      for (unsigned int o = 0; o < obstacles.size(); ++o)
-        if (const auto input = contact.input_coupling(o);
-            input.coupling.size() > 0)
-          load.add(obstacles[o].input_direction.norm(), input.coupling);
-      problem.constraints().condense(load);
-      return load;
-    }
-  } // namespace
-
-  // The tangent K of the step, extended by the input s, holds the
-  // obstacles' couplings: dr/ds = sum_o |d_o| c_o and, with the shell
-  // held, dF_o/ds = -|d_o| a_o (contact::Contact::InputCoupling). The
-  // shell's answer du/ds = K^-1 dr/ds adds c_o . du/ds: the Schur
-  // complement of the shell in that extended tangent, which is what a
-  // haptic loop's local model between two steps needs (Cavusoglu and
-  // Tendick 2000; protocol in doc/user-guide/interactive.md).
-  void Scene::reply_input_slopes(model::ShellProblem &problem,
-                                 contact::Contact    &contact,
-                                 unsigned int         step,
-                                 double               time)
-  {
-    // A linearized step's system is the step itself, and its factors
-    // serve. Newton judges its last iterate without a tangent when it
-    // expects convergence: its factors are then an iterate behind and
-    // hold projected pair Hessians, and both move the slope it reports
-    // (doc/validation.md). So the state reached gets its exact tangent
-    // (the couplings are assembled with it).
-    Vector<double> response;
-    contact.set_exact_tangent(true);
-    try
-    {
-      if (!time_integration_.linearized())
-        solvers::Newton(path_following_.newton(), linear_solver_)
-            .factorize_tangent(problem);
-      linear_solver_.solve_with_factors(response, input_load(problem, contact));
-    }
-    catch (const std::exception &)
-    {
-      // The step has converged; only its slopes are missing (nan).
-      response.reinit(problem.model().n_dofs());
-      response = std::numeric_limits<double>::quiet_NaN();
-    }
-    contact.set_exact_tangent(false);
-    const auto &obstacles = contact.obstacles();
-    auto       &reply     = *interactive_->replies;
-    reply << "slope " << step << ' ' << interactive_->input->value(time);
-    for (unsigned int o = 0; o < obstacles.size(); ++o)
-      if (auto input = contact.input_coupling(o); input.coupling.size() > 0)
-      {
-        problem.constraints().condense(input.coupling);
-        reply << ' '
-              << input.coupling * response -
-                     obstacles[o].input_direction.norm() * input.stiffness;
-      }
-    reply << std::endl;
+    const model::InternalForce internal(model, element_.formulation,
+                                        tangent_settings_.tangent());
+    write_step_vtu(output_, internal, state, out, directory, step, time);
   }
 
   void Scene::run_static_stage(const Stage         &stage,
@@ -1215,25 +717,11 @@ namespace coshell::driver
     // Read before the files below overwrite them (same directory).
     const std::vector<std::string> earlier = read_earlier_outputs();
     next_checkpoint_time_                  = checkpoint_interval_;
-    StagedOutput out(
-        io::CsvFile(directory + "/load_displacement.csv",
-                    with_quantities({"step", "load_factor", "iterations"},
-                                    quantities_.evaluate(model, state.values()),
-                                    {"stage", "time"})),
-        io::CsvFile(directory + "/newton_history.csv",
-                    {"step", "iteration", "load_factor", "relative_residual",
-                     "correction_norm", "relative_energy"}));
+    StagedOutput out =
+        open_staged_outputs(quantities_, model, state, directory);
     if (has_dynamic_stage())
     {
-      out.time_history.emplace(
-          directory + "/time_history.csv",
-          with_quantities(
-              {"step", "time", "dt", "iterations", "kinetic_energy",
-               "strain_energy", "external_work", "dissipated_energy",
-               "total_energy", "linear_momentum_x", "linear_momentum_y",
-               "linear_momentum_z", "angular_momentum_x", "angular_momentum_y",
-               "angular_momentum_z", "contact_work", "contact_energy"},
-              step_quantities(model, state, nullptr), {"stage"}));
+      open_time_history(out, quantities_, model, state, directory);
       model::Inertia(model, inertia_, time_integration_.se3())
           .set_initial_velocity(state);
       state.save();
@@ -1244,47 +732,22 @@ namespace coshell::driver
     double start_time = 0;
     for (const Stage &stage : stages_.list())
     {
-      if (interactive_ && stage.analysis != "dynamic")
+      if (interactive_ && stage.analysis != AnalysisType::dynamic)
         interactive_->read_ahead(start_time);
-      if (interactive_ && interactive_->ended)
+      if (interactive_ && interactive_->ended())
         break; // "quit": the stages after it do not start
       if (!skipped_by_restart(stage.number))
         run_stage(stage, model, state, start_time, out, result, directory, log);
       start_time += stage.duration;
     }
-    if (interactive_ && interactive_->target) // past the scene's end
-      *interactive_->replies << "done " << start_time << std::endl;
+    if (interactive_ && interactive_->has_target()) // past the scene's end
+      interactive_->reply_done(start_time);
     finish_staged_outputs(model, state,
-                          interactive_ && interactive_->ended
-                              ? interactive_->reached
+                          interactive_ && interactive_->ended()
+                              ? interactive_->reached()
                               : start_time,
                           out, result, directory);
     return result;
-  }
-
-  namespace
-  {
-    /// The Name with every character but letters and digits as '_'.
-    std::string column_name(std::string name)
-    {
-      for (char &c : name)
-        if (!std::isalnum(static_cast<unsigned char>(c)))
-          c = '_';
-      return name;
-    }
-  } // namespace
-
-  void Scene::open_obstacle_force_files(StagedOutput      &out,
-                                        const std::string &directory) const
-  {
-    const auto &obstacles = out.contact->obstacles();
-    for (unsigned int o = 0; o < obstacles.size(); ++o)
-      if (!obstacles[o].force_file.empty())
-        out.obstacle_force_files.emplace_back(
-            o, io::CsvFile(directory + "/" + obstacles[o].force_file,
-                           {"time",
-                            column_name(obstacles[o].name) + "_displacement",
-                            "force_n"}));
   }
 
   std::unique_ptr<contact::Contact>
@@ -1306,12 +769,7 @@ namespace coshell::driver
     if (time_integration_.linearized())
       contact->follow_force_slopes();
     out.contact = contact.get();
-    out.contact_forces.emplace(
-        directory + "/contact_forces.csv",
-        std::vector<std::string>{"step", "time", "obstacle", "fx", "fy", "fz",
-                                 "mx", "my", "mz", "active_pairs",
-                                 "min_distance", "work", "ux", "uy", "uz"});
-    open_obstacle_force_files(out, directory);
+    open_contact_files(out, directory);
     return contact;
   }
 
@@ -1324,9 +782,10 @@ namespace coshell::driver
                                  const Stage              &stage)
     {
       return std::any_of(stages.begin(), stages.end(),
-                         [&](const Stage &earlier) {
+                         [&](const Stage &earlier)
+                         {
                            return earlier.number < stage.number &&
-                                  earlier.analysis == "dynamic";
+                                  earlier.analysis == AnalysisType::dynamic;
                          });
     }
 
@@ -1358,17 +817,11 @@ namespace coshell::driver
     if (stages_.staged())
       log << stage.name() << ", t = " << start_time << " .. "
           << start_time + stage.duration << " s\n";
-    const bool dynamic       = stage.analysis == "dynamic";
-    auto       contributions = static_contributions(
-              model, loads_, element_.formulation, path_following_.tangent(),
-              path_following_.extrapolated_geometric_stiffness(dynamic),
-              path_following_.exact_tangent_after_failure(), log);
-    if (dynamic)
-      contributions.push_back(std::make_unique<model::Inertia>(
-          model, inertia_, time_integration_.se3()));
-    if (out.contact)
-      contributions.push_back(
-          std::make_unique<contact::ContactContribution>(*out.contact));
+    const bool dynamic = stage.analysis == AnalysisType::dynamic;
+    auto       contributions =
+        make_contributions({element_, tangent_settings_, loads_, inertia_,
+                            time_integration_.se3()},
+                           {model, stage, out.contact, log});
     model::ShellProblem problem(model, state, stage_constraints(model, stage),
                                 std::move(contributions),
                                 motions_.increments(model, stage.motions));
@@ -1460,17 +913,18 @@ namespace coshell::driver
     summary["prm_file"]    = prm_file_;
     summary["commit"]      = git_commit;
     summary["formulation"] = element_.formulation_name();
-    summary["analysis"]    = stages_.staged() ? "staged" : analysis_type_;
+    summary["analysis"] =
+        stages_.staged() ? "staged" : analysis_name(analysis_type_);
     if (has_dynamic_stage())
       summary["time_integration"] = time_integration_.method();
     summary["element"]       = element_.element_name();
     summary["linear_solver"] = linear_solver_.method();
-    summary["threads"]       = solvers::ThreadSettings::n_threads();
-    summary["mpi_ranks"]     = solvers::n_ranks();
+    summary["threads"]       = base::ThreadSettings::n_threads();
+    summary["mpi_ranks"]     = base::n_ranks();
     // The design values this run used, Changes applied: a checker or a
     // study reads them here instead of assuming the prm's.
-    io::Json::Object constants(io::expression_constants().begin(),
-                               io::expression_constants().end());
+    io::Json::Object constants(base::expression_constants().begin(),
+                               base::expression_constants().end());
     constants.erase("pi");
     if (!constants.empty())
       summary["constants"] = constants;

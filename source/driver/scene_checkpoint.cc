@@ -1,13 +1,13 @@
 // Checkpoint and restart of staged runs: Output/Checkpoint interval,
 // SIGINT/SIGTERM, and `coshell scene.prm --restart FILE`.
 
+#include <coshell/base/csv_file.h>
+#include <coshell/base/parallel_environment.h>
 #include <coshell/driver/interruption.h>
 #include <coshell/driver/scene.h>
 #include <coshell/io/checkpoint.h>
-#include <coshell/io/csv_file.h>
-#include <coshell/solvers/parallel_environment.h>
 
-#include "staged_output.h"
+#include <coshell/driver/staged_output.h>
 
 #include <algorithm>
 #include <cmath>
@@ -34,7 +34,7 @@ namespace coshell::driver
     auto csv_outputs(Output &out)
     {
       using File                = std::conditional_t<std::is_const_v<Output>,
-                                      const io::CsvFile, io::CsvFile>;
+                                      const base::CsvFile, base::CsvFile>;
       std::vector<File *> files = {
           &out.curve, &out.history,
           out.time_history ? &*out.time_history : nullptr,
@@ -79,12 +79,11 @@ namespace coshell::driver
     // The ranks read in turn, as when deal.II's reader took the file's
     // write lock; reading is now shared, and the file small.
     io::Checkpoint checkpoint;
-    solvers::one_rank_at_a_time([&]
-                                { checkpoint = io::read_checkpoint(file); });
+    base::one_rank_at_a_time([&] { checkpoint = io::read_checkpoint(file); });
     const std::string where = "restart file '" + file + "': ";
     const auto       &list  = stages_.list();
     if (checkpoint.stage < 1 || checkpoint.stage > list.size() ||
-        list[checkpoint.stage - 1].analysis != "dynamic")
+        list[checkpoint.stage - 1].analysis != AnalysisType::dynamic)
       throw std::invalid_argument(where + "it was written in stage " +
                                   std::to_string(checkpoint.stage) +
                                   ", which is not a dynamic stage "
@@ -122,7 +121,7 @@ namespace coshell::driver
     const std::string directory = earlier_directory(restart_file_);
     for (unsigned int k = 0; k < files.size(); ++k)
       if (const auto rows = earlier_rows(*restart_, k))
-        texts[k] = io::read_earlier_rows(directory + "/" + files[k], *rows);
+        texts[k] = base::read_earlier_rows(directory + "/" + files[k], *rows);
     return texts;
   }
 
@@ -191,7 +190,7 @@ namespace coshell::driver
       return;
     // An obstacle driven by --interactive input is where the input put it,
     // which a checkpoint does not hold: a restart would move it back.
-    if (interactive_ && interactive_->input)
+    if (interactive_ && interactive_->drives_obstacles())
       throw Interrupted("stopped by signal " + std::to_string(signal) +
                         " at t = " + std::to_string(time) +
                         " s; no checkpoint written: it would not hold the "
@@ -216,7 +215,7 @@ namespace coshell::driver
     c.dissipated_energy       = out.dissipated_energy;
     c.generalized_force       = model.to_vertex_order(out.generalized_force);
     c.damping_force           = model.to_vertex_order(out.damping_force);
-    for (const io::CsvFile *file : csv_outputs(out))
+    for (const base::CsvFile *file : csv_outputs(out))
       c.csv_rows.push_back(file ? file->rows() : 0u);
     if (out.contact)
     {

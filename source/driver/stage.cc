@@ -1,5 +1,5 @@
+#include <coshell/base/expressions.h>
 #include <coshell/driver/stage.h>
-#include <coshell/io/expressions.h>
 
 #include <deal.II/base/function_parser.h>
 #include <deal.II/base/utilities.h>
@@ -45,7 +45,7 @@ namespace coshell::driver
     std::function<double(double, double)>
     parse_load_factor(const std::string &expression, const std::string &where)
     {
-      std::shared_ptr<FunctionParser<2>> function = io::parse_expressions<2>(
+      std::shared_ptr<FunctionParser<2>> function = base::parse_expressions<2>(
           expression, 1, "t,s", false, "t and s", where);
       return [function](double t, double s)
       { return function->value(Point<2>(t, s)); };
@@ -72,15 +72,41 @@ namespace coshell::driver
     }
   } // namespace
 
+  AnalysisType analysis_type(const std::string &name)
+  {
+    for (const AnalysisType type :
+         {AnalysisType::linear_static, AnalysisType::nonlinear_static,
+          AnalysisType::dynamic, AnalysisType::modes})
+      if (analysis_name(type) == name)
+        return type;
+    throw std::invalid_argument("unknown analysis type '" + name + "'");
+  }
+
+  std::string analysis_name(AnalysisType type)
+  {
+    switch (type)
+    {
+    case AnalysisType::linear_static:
+      return "linear static";
+    case AnalysisType::nonlinear_static:
+      return "nonlinear static";
+    case AnalysisType::dynamic:
+      return "dynamic";
+    case AnalysisType::modes:
+      return "modes";
+    }
+    throw std::logic_error("analysis_name: no such AnalysisType");
+  }
+
   std::string Stage::name() const
   {
-    return stage_section(number) + " (" + analysis + ")";
+    return stage_section(number) + " (" + analysis_name(analysis) + ")";
   }
 
   std::function<double(double, double)>
-  Stages::default_load_factor(const std::string &analysis)
+  Stages::default_load_factor(AnalysisType analysis)
   {
-    if (analysis == "dynamic")
+    if (analysis == AnalysisType::dynamic)
       return [](double, double) { return 1.0; };
     return [](double, double s) { return s; };
   }
@@ -133,11 +159,14 @@ namespace coshell::driver
       const std::string where = stage_section(k) + "/";
       try
       {
-        Stage stage;
-        stage.number   = k;
-        stage.analysis = prm.get("Analysis type");
-        stage.duration = io::evaluate_constant_expression(
-            prm.get("Duration"), io::expression_constants(),
+        Stage             stage;
+        const std::string type = prm.get("Analysis type");
+        const bool        used = type != "none";
+        stage.number           = k;
+        if (used)
+          stage.analysis = analysis_type(type);
+        stage.duration = base::evaluate_constant_expression(
+            prm.get("Duration"), base::expression_constants(),
             where + "Duration");
         const std::string load_factor = Utilities::trim(prm.get("Load factor"));
         stage.load_factor =
@@ -147,9 +176,9 @@ namespace coshell::driver
         stage.motions  = active_motions(prm.get("Motions"), defined_motions,
                                         where + "Motions");
         stage.released = parse_numbers(prm.get("Release"), where + "Release");
-        if (stage.analysis != "none" && stage.duration <= 0)
+        if (used && stage.duration <= 0)
           throw std::invalid_argument(where + "Duration must be positive");
-        if (stage.analysis != "none")
+        if (used)
           stages_.push_back(stage);
       }
       catch (...)

@@ -13,7 +13,7 @@
 // derivatives of omega(u). The translations and the frame's in-plane angle
 // are invariant to rotations and differentiated (forward AD, Sacado) in the
 // three scalars a.a, b.b, a.b of the edges a, b; the spin's normal part in
-// closed form (doc/theory.md 13.4).
+// closed form (doc/theory/corotational.md, section 13.4).
 
 #include <coshell/element/corotational.h>
 
@@ -447,7 +447,7 @@ namespace coshell::element
     // vertices only through the edges a = x1 - x0 and b = x2 - x0 (a rigid
     // translation moves neither): d/dx_v = sum_e edge_weight[v][e] d/de_e.
     // They are differentiated in closed form at the current configuration
-    // (doc/theory.md 13.4):
+    // (doc/theory/corotational.md, section 13.4):
     // - the translations and the polar angle theta of the frame in the
     //   edge frame (t1 = a/|a|, t2 = n x t1) are invariant to rotations, so
     //   they depend on (a, b) only through (A, B, C) = (a.a, b.b, a.b);

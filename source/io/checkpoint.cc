@@ -1,5 +1,5 @@
+#include <coshell/base/parallel_environment.h>
 #include <coshell/io/checkpoint.h>
-#include <coshell/solvers/parallel_environment.h>
 
 #include "hdf5_reader.h"
 
@@ -58,7 +58,7 @@ namespace coshell::io
   void write_checkpoint(const Checkpoint &checkpoint, const std::string &path)
   {
     // Every rank holds the same state; rank 0 writes it.
-    if (!solvers::writes_output())
+    if (!base::writes_output())
       return;
     const std::string partial = path + ".partial";
     {

@@ -1,5 +1,5 @@
+#include <coshell/base/parallel_environment.h>
 #include <coshell/io/json.h>
-#include <coshell/solvers/parallel_environment.h>
 
 #include <cmath>
 #include <cstdio>
@@ -100,7 +100,7 @@ namespace coshell::io
 
   void write_file_atomically(const std::string &path, const std::string &text)
   {
-    if (!solvers::writes_output())
+    if (!base::writes_output())
       return;
     const std::string temporary = path + ".partial";
     {

@@ -1,5 +1,5 @@
 #include <algorithm>
-#include <coshell/io/csv_file.h>
+#include <coshell/base/csv_file.h>
 #include <coshell/io/results.h>
 
 #include <cmath>
@@ -138,7 +138,7 @@ namespace coshell::io
       if (!map.count(key))
         return "";
       std::ostringstream out;
-      out << std::setprecision(csv_digits) << map.at(key);
+      out << std::setprecision(base::csv_digits) << map.at(key);
       return out.str();
     }
   } // namespace
@@ -154,7 +154,7 @@ namespace coshell::io
     for (const auto &[name, value] : levels.front().qoi)
       if (name != primary)
         csv << ',' << name << ',' << name << "_relative_error";
-    csv << '\n' << std::setprecision(csv_digits);
+    csv << '\n' << std::setprecision(base::csv_digits);
     for (unsigned int k = 0; k < levels.size(); ++k)
     {
       const auto &l      = levels[k];

@@ -1,7 +1,7 @@
+#include <coshell/base/parallel_environment.h>
 #include <coshell/io/json.h>
 #include <coshell/io/vtu_output.h>
 #include <coshell/model/internal_force.h>
-#include <coshell/solvers/parallel_environment.h>
 
 #include <deal.II/fe/fe_simplex_p.h>
 #include <deal.II/fe/mapping_fe.h>
@@ -200,9 +200,9 @@ namespace coshell::io
     if (!write_vtu_)
       return "";
     // With pvtu every rank writes the piece of its own cells.
-    if (!solvers::writes_output() && !pvtu_)
+    if (!base::writes_output() && !pvtu_)
       return record_series(output_directory, name, time, companions);
-    if (vertex_table_ && solvers::writes_output())
+    if (vertex_table_ && base::writes_output())
       write_vertex_table(model, solution,
                          output_directory + "/" + name + ".vertices.csv");
     DataOut<2, 3> data_out;
@@ -210,7 +210,7 @@ namespace coshell::io
     add_fields(data_out, model, solution, resultants, fields);
     if (pvtu_)
     {
-      const unsigned int rank = solvers::this_rank();
+      const unsigned int rank = base::this_rank();
       data_out.set_cell_selection(
           FilteredIterator<Triangulation<2, 3>::cell_iterator>(
               [rank](const Triangulation<2, 3>::cell_iterator &cell)
@@ -230,7 +230,7 @@ namespace coshell::io
     }
     const std::string pvd =
         record_series(output_directory, name, time, companions);
-    if (solvers::writes_output())
+    if (base::writes_output())
       write_pvd(pvd, series_[output_directory]);
     return pvd;
   }
@@ -242,13 +242,13 @@ namespace coshell::io
     const auto piece = [&](unsigned int rank)
     { return name + ".piece-" + std::to_string(rank) + ".vtu"; };
     {
-      std::ofstream out(directory + "/" + piece(solvers::this_rank()));
+      std::ofstream out(directory + "/" + piece(base::this_rank()));
       data_out.write_vtu(out);
     }
-    if (solvers::writes_output())
+    if (base::writes_output())
     {
       std::vector<std::string> pieces;
-      for (unsigned int rank = 0; rank < solvers::n_ranks(); ++rank)
+      for (unsigned int rank = 0; rank < base::n_ranks(); ++rank)
         pieces.push_back(piece(rank));
       std::ofstream out(directory + "/" + name + ".pvtu");
       data_out.write_pvtu_record(out, pieces);
@@ -274,7 +274,7 @@ namespace coshell::io
                                     double               time)
   {
     // deal.II writes HDF5 through MPI-IO; a serial run starts MPI here.
-    solvers::ensure_mpi_initialized();
+    base::ensure_mpi_initialized();
     DataOutBase::DataOutFilter filter(
         DataOutBase::DataOutFilterFlags(true, true));
     data_out.write_filtered_data(filter);

@@ -1,4 +1,4 @@
-#include <coshell/io/expressions.h>
+#include <coshell/base/expressions.h>
 #include <coshell/mesh/mesh.h>
 
 #include <deal.II/base/utilities.h>
@@ -205,7 +205,7 @@ namespace coshell::mesh
   GmshConstants parse_gmsh_constants(const std::string &text,
                                      const std::string &where)
   {
-    return io::parse_named_values(text, where);
+    return base::parse_named_values(text, where);
   }
 
   void read_gmsh(Surface             &surface,

@@ -1,4 +1,4 @@
-#include <coshell/io/expressions.h>
+#include <coshell/base/expressions.h>
 #include <coshell/mesh/mesh.h>
 
 #include <deal.II/grid/grid_tools.h>
@@ -112,8 +112,8 @@ namespace coshell::mesh
     vertex_transformation.reset();
     if (Utilities::trim(transformation) != "x; y; z")
       vertex_transformation =
-          io::parse_expressions<3>(transformation, 3, "x,y,z", false, "x, y, z",
-                                   "Mesh/Vertex transformation");
+          base::parse_expressions<3>(transformation, 3, "x,y,z", false,
+                                     "x, y, z", "Mesh/Vertex transformation");
     if (source == "gmsh" && gmsh_file.empty())
       throw std::invalid_argument(
           "Mesh/Gmsh file must be set when Mesh/Source = gmsh");

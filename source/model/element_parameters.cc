@@ -1,4 +1,4 @@
-#include <coshell/io/expressions.h>
+#include <coshell/base/expressions.h>
 #include <coshell/model/element_parameters.h>
 
 #include <deal.II/base/utilities.h>
@@ -63,12 +63,12 @@ namespace coshell::model
                         "Kirchhoff Triangle; przemieniecki, the paper's "
                         "modified Przemieniecki incomplete cubic (x axis along "
                         "edge AB = vertex 0 -> 1); or off.");
-      prm.declare_entry("Drilling stiffness factor", "1e-3",
-                        Patterns::Double(0),
-                        "Penalty tying each nodal drilling "
-                        "rotation to the membrane's in-plane rotation, "
-                        "k = factor * E h A / 3 (see doc/theory.md). Used by "
-                        "the cst membrane only. Unit: dimensionless.");
+      prm.declare_entry(
+          "Drilling stiffness factor", "1e-3", Patterns::Double(0),
+          "Penalty tying each nodal drilling "
+          "rotation to the membrane's in-plane rotation, "
+          "k = factor * E h A / 3 (doc/theory.md, section 4). Used by "
+          "the cst membrane only. Unit: dimensionless.");
       prm.declare_entry(
           "ANDES curvature scaling", "10", Patterns::Double(0),
           "Constant c of the andes membrane's higher-order "
@@ -79,13 +79,14 @@ namespace coshell::model
           "surface the drilling terms charge part of the bending rotation at "
           "membrane stiffness and lock (91 % too stiff on the 4 x 4 pinched "
           "hemisphere); flat meshes keep factor 1. 0: Felippa's optimal "
-          "element everywhere (see doc/theory.md). Unit: dimensionless.");
+          "element everywhere (doc/theory.md, section 14). Unit: "
+          "dimensionless.");
       prm.declare_entry(
           "ANDES basic drilling scaling", "0.1", Patterns::Double(0),
           "Constant c_b of the same form for the Allman drilling "
           "weight alpha_b = 3/2 of the andes membrane's basic stiffness: "
           "alpha_b / (1 + c_b l^2 phi^2 / h^2) per triangle. 0: alpha_b = 3/2 "
-          "everywhere (see doc/theory.md). Unit: dimensionless.");
+          "everywhere (doc/theory.md, section 14). Unit: dimensionless.");
       prm.leave_subsection();
     }
   } // namespace
@@ -111,10 +112,10 @@ namespace coshell::model
     const std::string thickness = prm.get("Thickness");
     const std::string density   = prm.get("Density");
     prm.leave_subsection();
-    material.thickness   = io::as_number(thickness).value_or(1.0);
-    material.density     = io::as_number(density).value_or(0.0);
-    thickness_expression = io::as_number(thickness) ? "" : thickness;
-    density_expression   = io::as_number(density) ? "" : density;
+    material.thickness   = base::as_number(thickness).value_or(1.0);
+    material.density     = base::as_number(density).value_or(0.0);
+    thickness_expression = base::as_number(thickness) ? "" : thickness;
+    density_expression   = base::as_number(density) ? "" : density;
     try
     {
       material.validate();

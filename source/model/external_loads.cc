@@ -66,25 +66,4 @@ namespace coshell::model
   {
     residual.add(point.load_factor, dead_load_);
   }
-
-  void ExternalLoads::load_vector(const ShellState &state,
-                                  Vector<double>   &load) const
-  {
-    load = dead_load_;
-    if (follower_pressure_ == 0)
-      return;
-    const EvaluationPoint unit{state, 0, 1};
-    for_each_cell(
-        model_.dof_handler(),
-        [&](const CellIterator &cell, CellContribution &contribution)
-        {
-          contribution.vector.reinit(element::shell_dofs);
-          add_cell(cell, unit, contribution, false);
-        },
-        [&](const CellContribution &contribution)
-        {
-          for (unsigned int i = 0; i < element::shell_dofs; ++i)
-            load[contribution.dofs[i]] += contribution.vector[i];
-        });
-  }
 } // namespace coshell::model

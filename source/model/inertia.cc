@@ -1,5 +1,5 @@
+#include <coshell/base/expressions.h>
 #include <coshell/element/shell_element.h>
-#include <coshell/io/expressions.h>
 #include <coshell/model/inertia.h>
 #include <coshell/model/internal_force.h>
 
@@ -19,8 +19,8 @@ namespace coshell::model
     std::unique_ptr<FunctionParser<3>> vector_field(const std::string &text,
                                                     const std::string &where)
     {
-      return io::parse_expressions<3>(text, 3, "x,y,z", false, "x, y, z",
-                                      where);
+      return base::parse_expressions<3>(text, 3, "x,y,z", false, "x, y, z",
+                                        where);
     }
 
     /// The three entries of a cell vertex's DoFs from 'first' on, through

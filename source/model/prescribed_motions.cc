@@ -1,5 +1,5 @@
+#include <coshell/base/expressions.h>
 #include <coshell/element/corotational.h>
-#include <coshell/io/expressions.h>
 #include <coshell/model/prescribed_motions.h>
 
 #include <deal.II/base/utilities.h>
@@ -89,11 +89,12 @@ namespace coshell::model
     for (unsigned int k = 1; k <= max_motions; ++k)
     {
       prm.enter_subsection(motion_section(k));
-      prm.declare_entry("Where", "", Patterns::Anything(),
-                        "The vertices moved: 'boundary N' (every vertex of "
-                        "boundary id N) or 'point x y z' (the vertex nearest "
-                        "that point); empty: this motion is not defined. "
-                        "Unit: length for x y z (m in SI, mm in the IOL scenes).");
+      prm.declare_entry(
+          "Where", "", Patterns::Anything(),
+          "The vertices moved: 'boundary N' (every vertex of "
+          "boundary id N) or 'point x y z' (the vertex nearest "
+          "that point); empty: this motion is not defined. "
+          "Unit: length for x y z (m in SI, mm in the IOL scenes).");
       prm.declare_entry("Components", "ux uy uz rx ry rz", Patterns::Anything(),
                         "Prescribed components, space separated: any of ux "
                         "uy uz, and rx ry rz all together or none (the "

@@ -1,6 +1,6 @@
 #include <coshell/model/quantities.h>
 
-#include <coshell/io/constants.h>
+#include <coshell/base/constants.h>
 
 #include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/utilities.h>
@@ -158,8 +158,8 @@ namespace coshell::model
       std::istringstream  in(spec);
       std::vector<double> numbers;
       for (std::string token; in >> token;)
-        numbers.push_back(io::evaluate_constant_expression(
-            token, io::expression_constants(), where + ": " + name));
+        numbers.push_back(base::evaluate_constant_expression(
+            token, base::expression_constants(), where + ": " + name));
       const bool malformed = numbers.size() != 7 || numbers[0] < 0 ||
                              numbers[0] != std::floor(numbers[0]);
       const Tensor<1, 3> axis =

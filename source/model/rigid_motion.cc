@@ -1,6 +1,6 @@
+#include <coshell/base/constants.h>
+#include <coshell/base/expressions.h>
 #include <coshell/element/corotational.h>
-#include <coshell/io/constants.h>
-#include <coshell/io/expressions.h>
 #include <coshell/model/rigid_motion.h>
 
 #include <deal.II/base/utilities.h>
@@ -14,7 +14,7 @@ namespace coshell::model
   Tensor<1, 3> parse_three_values(const std::string &text,
                                   const std::string &where)
   {
-    const std::vector<double> values = io::parse_constant_list(text, where);
+    const std::vector<double> values = base::parse_constant_list(text, where);
     if (values.size() != 3)
       throw std::invalid_argument(where + ": '" + text +
                                   "' is not three values 'a, b, c'");
@@ -43,10 +43,10 @@ namespace coshell::model
   void RigidMotion::parse_entries(ParameterHandler  &prm,
                                   const std::string &where)
   {
-    translation = io::parse_expressions<1>(prm.get("Translation"), 3, "x,t",
-                                           true, "t", where + "/Translation");
-    angle = io::parse_expressions<1>(prm.get("Rotation angle"), 1, "x,t", true,
-                                     "t", where + "/Rotation angle");
+    translation = base::parse_expressions<1>(prm.get("Translation"), 3, "x,t",
+                                             true, "t", where + "/Translation");
+    angle = base::parse_expressions<1>(prm.get("Rotation angle"), 1, "x,t",
+                                       true, "t", where + "/Rotation angle");
     axis =
         parse_three_values(prm.get("Rotation axis"), where + "/Rotation axis");
     if (axis.norm() == 0)

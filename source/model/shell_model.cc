@@ -1,4 +1,4 @@
-#include <coshell/io/expressions.h>
+#include <coshell/base/expressions.h>
 #include <coshell/model/cell_loop.h>
 #include <coshell/model/shell_model.h>
 #include <coshell/model/subdomain_dofs.h>
@@ -40,11 +40,6 @@ namespace coshell::model
                                 "' (expected ux, uy, uz, rx, ry or rz)");
   }
 
-  std::string component_name(unsigned int component)
-  {
-    return component_names.at(component);
-  }
-
   ShellModel::ShellModel(const mesh::Surface     &surface,
                          const ElementParameters &element,
                          const Tensor<1, 3>      &normal_reference)
@@ -72,7 +67,7 @@ namespace coshell::model
     if (text.empty())
       return std::vector<double>(surface_.n_active_cells(), uniform);
     // "region" is the parser's time variable, set to the material id.
-    const auto function = io::parse_expressions<3>(
+    const auto function = base::parse_expressions<3>(
         text, 1, "x,y,z,region", true, "x, y, z, region", "Material/" + name);
     std::vector<double> values(surface_.n_active_cells());
     for (const auto &cell : dof_handler_.active_cell_iterators())
@@ -219,14 +214,14 @@ namespace coshell::model
   void ShellModel::number_dofs_by_rank()
   {
     locally_owned_dofs_ = complete_index_set(dof_handler_.n_dofs());
-    if (!solvers::distributed())
+    if (!base::distributed())
       return;
     DoFRenumbering::subdomain_wise(dof_handler_);
     const auto owned = DoFTools::locally_owned_dofs_per_subdomain(dof_handler_);
-    if (owned.size() != solvers::n_ranks())
+    if (owned.size() != base::n_ranks())
       throw std::logic_error("the mesh is not partitioned into one part per "
                              "MPI rank");
-    locally_owned_dofs_ = owned[solvers::this_rank()];
+    locally_owned_dofs_ = owned[base::this_rank()];
     if (!locally_owned_dofs_.is_contiguous())
       throw std::logic_error("the DoFs of one rank are not contiguous");
   }
@@ -397,7 +392,7 @@ namespace coshell::model
                                  SparseMatrix<double>            &matrix) const
   {
     assemble_owned_cells(constraints, matrix);
-    solvers::sum_over_ranks(matrix);
+    base::sum_over_ranks(matrix);
   }
 
   void
@@ -414,7 +409,7 @@ namespace coshell::model
       TrilinosWrappers::SparsityPattern              &pattern,
       const std::vector<std::array<unsigned int, 2>> &coupled) const
   {
-    const auto rank             = solvers::this_rank();
+    const auto rank             = base::this_rank();
     IndexSet   rows_of_my_cells = dofs_of_subdomain_cells(dof_handler_, rank);
     // Constraints tie a DoF of my cells to others: their rows are written.
     std::vector<types::global_dof_index> constrained_to;
@@ -429,7 +424,7 @@ namespace coshell::model
     DoFTools::make_sparsity_pattern(dof_handler_, pattern, constraints, false,
                                     rank);
     // Terms that couple vertices beyond the cells reach each row from the
-    // rank that owns it (see solvers::RowsOf).
+    // rank that owns it (see base::RowsOf).
     for (const auto &[v, w] : coupled)
       for (const auto &[row_vertex, column_vertex] :
            {std::pair{v, w}, std::pair{w, v}})

@@ -1,6 +1,6 @@
 #include <coshell/model/shell_problem.h>
 
-#include <coshell/solvers/parallel_environment.h>
+#include <coshell/base/parallel_environment.h>
 
 #include <deal.II/base/multithread_info.h>
 #include <deal.II/lac/affine_constraints.templates.h>
@@ -64,7 +64,8 @@ namespace coshell::model
         "search works on the scaled correction). Load control and time "
         "steps, not the arc-length corrector. A trust region for first "
         "steps whose linear predictor is far off (the slit annular plate "
-        "needs fewer Newton corrections with it, doc/performance.md); it "
+        "needs fewer Newton corrections with it, "
+        "doc/performance/nonlinear.md); it "
         "costs iterations where large rotations are right (an end moment "
         "rolling a strip up). Unit: rad.");
     prm.leave_subsection();
@@ -108,7 +109,7 @@ namespace coshell::model
     static std::atomic<std::uint64_t> versions{0};
     sparsity_version_ = ++versions;
     cell_scatter_.invalidate();
-    if (!solvers::distributed())
+    if (!base::distributed())
       return;
     if (!distributed_sparsity_)
       distributed_sparsity_ =
@@ -117,7 +118,7 @@ namespace coshell::model
                                      *distributed_sparsity_, coupled_vertices_);
   }
 
-  void ShellProblem::reinit_tangent(solvers::TangentMatrix &tangent) const
+  void ShellProblem::reinit_tangent(base::TangentMatrix &tangent) const
   {
     if (distributed_sparsity_)
       tangent.reinit(*distributed_sparsity_);
@@ -197,7 +198,7 @@ namespace coshell::model
     if (active.empty())
       return;
     const bool with_tangent = tangent != nullptr;
-    const bool split        = solvers::distributed();
+    const bool split        = base::distributed();
     auto      &kind_forces  = split ? rank_forces_ : forces_;
     if (split)
       for (auto &force : rank_forces_)
@@ -269,13 +270,13 @@ namespace coshell::model
   {
     for (unsigned int k = 0; k < n_cell_force_kinds; ++k)
     {
-      solvers::sum_over_ranks(rank_forces_[k]);
+      base::sum_over_ranks(rank_forces_[k]);
       forces_[k] += rank_forces_[k];
     }
     if (residual)
-      solvers::sum_over_ranks(*residual);
+      base::sum_over_ranks(*residual);
     if (tangent)
-      solvers::sum_over_ranks(*tangent);
+      base::sum_over_ranks(*tangent);
   }
 
   void
@@ -446,8 +447,8 @@ namespace coshell::model
     pending_ = pending_ || blocked_;
   }
 
-  void ShellProblem::evaluate(Vector<double>         &residual,
-                              solvers::TangentMatrix *tangent)
+  void ShellProblem::evaluate(Vector<double>      &residual,
+                              base::TangentMatrix *tangent)
   {
     const auto start = std::chrono::steady_clock::now();
     update_inhomogeneities();
@@ -464,7 +465,7 @@ namespace coshell::model
       auto &matrix = tangent->trilinos();
       assemble(every, at, &residual, &matrix);
       finish_preparation(preparation);
-      solvers::RowsOf owned_rows(matrix, model_.locally_owned_dofs());
+      base::RowsOf owned_rows(matrix, model_.locally_owned_dofs());
       assemble_blocks(at, residual, &owned_rows);
       matrix.compress(VectorOperation::add);
     }
@@ -709,7 +710,7 @@ namespace coshell::model
     velocity_coefficient_     = velocity_coefficient;
   }
 
-  void ShellProblem::mass_matrix(solvers::TangentMatrix &mass)
+  void ShellProblem::mass_matrix(base::TangentMatrix &mass)
   {
     mass.zero();
     EvaluationPoint at          = point();

@@ -1,5 +1,5 @@
+#include <coshell/base/parallel_environment.h>
 #include <coshell/solvers/cholmod_solver.h>
-#include <coshell/solvers/parallel_environment.h>
 
 #include "compressed_rows.h"
 
@@ -60,7 +60,7 @@ namespace coshell::solvers
       // leave vertices apart that 6, 24 (four vertices) and 72 merge.
       // Fewer, larger supernodes cost a few more flops and far fewer
       // small BLAS calls, so the factorizations of shells of a few
-      // thousand DoFs take less time (doc/performance.md).
+      // thousand DoFs take less time (doc/performance/scaling.md).
       common.nrelax[0] = 6;
       common.nrelax[1] = 24;
       common.nrelax[2] = 72;
@@ -178,9 +178,9 @@ namespace coshell::solvers
     // the IOL's haptic step factorizes faster on one BLAS thread than on
     // two. A clamped plate of half a million DoFs solves no faster on two
     // either, but larger machines may: the line is drawn low
-    // (doc/performance.md).
-    constexpr double smallest_shared_flops = 1e8;
-    const SerialBlas serial(d.flops < smallest_shared_flops);
+    // (doc/performance/scaling.md).
+    constexpr double       smallest_shared_flops = 1e8;
+    const base::SerialBlas serial(d.flops < smallest_shared_flops);
     if (!d.factor || !cholmod_factorize(d.permuted, d.factor, &d.common) ||
         d.common.status == CHOLMOD_NOT_POSDEF)
       throw std::runtime_error(

@@ -1,7 +1,7 @@
+#include <coshell/base/parallel_environment.h>
+#include <coshell/base/stopwatch.h>
 #include <coshell/solvers/cholmod_solver.h>
 #include <coshell/solvers/linear_solver.h>
-#include <coshell/solvers/parallel_environment.h>
-#include <coshell/solvers/stopwatch.h>
 #include <coshell/solvers/umfpack_solver.h>
 
 #include <deal.II/base/index_set.h>
@@ -84,7 +84,7 @@ namespace coshell::solvers
       x = 0;
       for (const auto row : owned_rows)
         x[row] = solution[row];
-      sum_over_ranks(x);
+      base::sum_over_ranks(x);
     }
   };
 
@@ -240,7 +240,7 @@ namespace coshell::solvers
                                const std::function<void()> &release_matrix,
                                const std::function<void()> &complete_matrix)
   {
-    const Stopwatch timer(seconds_);
+    const base::Stopwatch timer(seconds_);
     backend_->using_cholmod = method_ == "cholmod" && symmetric;
     if (method_ == "umfpack" || method_ == "cholmod")
     {
@@ -259,7 +259,7 @@ namespace coshell::solvers
       factorize_directly(matrix, complete_matrix);
       return;
     }
-    ensure_mpi_initialized();
+    base::ensure_mpi_initialized();
     if (backend_->owned_rows.size() != matrix.m())
     {
       backend_->owned_rows   = complete_index_set(matrix.m());
@@ -281,7 +281,7 @@ namespace coshell::solvers
   LinearSolver::factorize_directly(const SparseMatrix<double>  &matrix,
                                    const std::function<void()> &complete_matrix)
   {
-    const Stopwatch timer(factorization_seconds_);
+    const base::Stopwatch timer(factorization_seconds_);
     ++factorizations_;
     factors_worn_out_ = false;
     if (backend_->using_cholmod)
@@ -310,9 +310,9 @@ namespace coshell::solvers
 
   void LinearSolver::factorize(TrilinosWrappers::SparseMatrix &&matrix)
   {
-    const Stopwatch timer(seconds_);
-    AssertThrow(distributed() && matrix.locally_owned_range_indices() ==
-                                     backend_->owned_rows,
+    const base::Stopwatch timer(seconds_);
+    AssertThrow(base::distributed() && matrix.locally_owned_range_indices() ==
+                                           backend_->owned_rows,
                 ExcMessage("a distributed matrix needs the rows of "
                            "set_row_partition()"));
     backend_->using_cholmod = false;
@@ -327,7 +327,7 @@ namespace coshell::solvers
     set_up_trilinos_solver();
   }
 
-  void LinearSolver::factorize(TangentMatrix &tangent, bool symmetric)
+  void LinearSolver::factorize(base::TangentMatrix &tangent, bool symmetric)
   {
     if (tangent.distributed())
       factorize(tangent.take_trilinos());
@@ -347,18 +347,18 @@ namespace coshell::solvers
   bool LinearSolver::reads_lower_triangle(bool symmetric) const
   {
     return method_ == "cholmod" && symmetric && !reuse_factorization_ &&
-           !distributed();
+           !base::distributed();
   }
 
   const IndexSet &LinearSolver::distributed_rows() const
   {
     static const IndexSet none;
-    return distributed() ? backend_->owned_rows : none;
+    return base::distributed() ? backend_->owned_rows : none;
   }
 
   void LinearSolver::set_up_trilinos_solver()
   {
-    const Stopwatch timer(factorization_seconds_);
+    const base::Stopwatch timer(factorization_seconds_);
     if (is_amesos())
     {
       backend_->trilinos_direct =
@@ -431,7 +431,7 @@ namespace coshell::solvers
 
   void LinearSolver::set_row_partition(const IndexSet &owned_rows)
   {
-    if (!distributed())
+    if (!base::distributed())
     {
       backend_->owned_rows.clear();
       return;
@@ -439,7 +439,7 @@ namespace coshell::solvers
     if (method_ == "cholmod" || method_ == "umfpack")
       throw std::invalid_argument(
           "Linear solver/Method = " + method_ + " runs on one rank, but " +
-          std::to_string(n_ranks()) +
+          std::to_string(base::n_ranks()) +
           " MPI ranks share this run; choose amesos-mumps (distributed "
           "direct), amesos-klu (gathered on one rank), cg-amg or gmres-amg");
     backend_->owned_rows   = owned_rows;
@@ -460,7 +460,7 @@ namespace coshell::solvers
                            const Vector<double> &b,
                            Refinement            refinement)
   {
-    const Stopwatch timer(seconds_);
+    const base::Stopwatch timer(seconds_);
     if (method_ == "umfpack" || method_ == "cholmod")
     {
       if (unfactorized_ && solve_with_kept_factors(x, b))
@@ -497,7 +497,7 @@ namespace coshell::solvers
   {
     if (method_ != "umfpack" && method_ != "cholmod")
       return solve(x, b);
-    const Stopwatch timer(seconds_);
+    const base::Stopwatch timer(seconds_);
     x.reinit(b.size());
     if (backend_->kept == Backend::Factors::none)
       throw std::logic_error("solve_with_factors: nothing was factorized");

@@ -173,18 +173,19 @@ namespace coshell::solvers
 
   /// What the linear solver does not read, the problem need not assemble:
   /// CHOLMOD reads a symmetric tangent's entries with column <= row only,
-  /// and the cells' scatter is a sizeable part of a run (doc/performance.md).
-  void Newton::assemble_for_solver(const NonlinearProblem &problem,
-                                   TangentMatrix          &tangent) const
+  /// and the cells' scatter is a sizeable part of a run
+  /// (doc/performance/elements-and-assembly.md).
+  void Newton::assemble_for_solver(const base::NonlinearProblem &problem,
+                                   base::TangentMatrix          &tangent) const
   {
     if (!tangent.distributed())
       tangent.set_lower_only(
           linear_solver_.reads_lower_triangle(problem.symmetric_tangent()));
   }
 
-  void Newton::factorize_tangent(NonlinearProblem &problem) const
+  void Newton::factorize_tangent(base::NonlinearProblem &problem) const
   {
-    TangentMatrix &tangent = tangent_;
+    base::TangentMatrix &tangent = tangent_;
     problem.reinit_tangent(tangent);
     assemble_for_solver(problem, tangent);
     Vector<double> residual(problem.sparsity().n_rows());
@@ -192,15 +193,15 @@ namespace coshell::solvers
     linear_solver_.factorize(tangent, problem.symmetric_tangent());
   }
 
-  Vector<double> Newton::correction(NonlinearProblem     &problem,
-                                    TangentMatrix        &tangent,
-                                    const Vector<double> &residual) const
+  Vector<double> Newton::correction(base::NonlinearProblem &problem,
+                                    base::TangentMatrix    &tangent,
+                                    const Vector<double>   &residual) const
   {
     linear_solver_.factorize(tangent, problem.symmetric_tangent());
     Vector<double> x(residual.size());
     // Refining the correction is what the next Newton iteration does:
-    // UMFPACK's refinement steps would cost linear-solver time and leave
-    // the iterates the same to 11 digits (doc/performance.md).
+    // UMFPACK's refinement steps would cost linear-solver time for
+    // digits the next iteration supplies anyway.
     linear_solver_.solve(x, residual, LinearSolver::Refinement::none);
     problem.distribute(x);
     if (!is_finite(x))
@@ -212,7 +213,7 @@ namespace coshell::solvers
   {
     /// Takes back a trial increment: the problem puts the iterate back
     /// exactly (end_trial()), and what the trial's evaluation changed.
-    void undo_trial(NonlinearProblem &problem, Vector<double> &step)
+    void undo_trial(base::NonlinearProblem &problem, Vector<double> &step)
     {
       step *= -1;
       problem.apply_increment(step);
@@ -229,11 +230,11 @@ namespace coshell::solvers
   /// too if given: most line searches accept it (on the IOL injection),
   /// and its evaluation is then the next iteration's. Later
   /// trials are accepted less often, and assemble the residual alone.
-  Newton::LineSearch Newton::line_search(NonlinearProblem     &problem,
-                                         const Vector<double> &residual,
-                                         const Vector<double> &correction,
-                                         Vector<double>       &trial_residual,
-                                         TangentMatrix        *tangent) const
+  Newton::LineSearch Newton::line_search(base::NonlinearProblem &problem,
+                                         const Vector<double>   &residual,
+                                         const Vector<double>   &correction,
+                                         Vector<double>         &trial_residual,
+                                         base::TangentMatrix    *tangent) const
   {
     const double   slope_at_zero = correction * residual;
     double         a_low = 0, s_low = slope_at_zero, a = 1;
@@ -254,7 +255,7 @@ namespace coshell::solvers
         step.equ(a, correction);
         problem.begin_trial();
         problem.apply_increment(step);
-        TangentMatrix *trial_tangent = trial == 0 ? tangent : nullptr;
+        base::TangentMatrix *trial_tangent = trial == 0 ? tangent : nullptr;
         problem.evaluate(trial_residual, trial_tangent);
         slope = correction * trial_residual;
         if (std::isfinite(slope) &&
@@ -284,12 +285,12 @@ namespace coshell::solvers
   /// of the other kind would change the path: an evaluation moves
   /// obstacles that are catching up with their motion, so evaluating the
   /// same iterate again is not the same as evaluating it once.
-  bool Newton::apply_correction(NonlinearProblem &problem,
-                                const LineSearch &search,
-                                bool              next_with_tangent,
-                                Vector<double>   &du,
-                                Vector<double>   &residual,
-                                Vector<double>   &trial_residual) const
+  bool Newton::apply_correction(base::NonlinearProblem &problem,
+                                const LineSearch       &search,
+                                bool                    next_with_tangent,
+                                Vector<double>         &du,
+                                Vector<double>         &residual,
+                                Vector<double>         &trial_residual) const
   {
     if (search.accepted && search.with_tangent == next_with_tangent)
     {
@@ -306,9 +307,9 @@ namespace coshell::solvers
   /// What a solve carries from one iteration to the next.
   struct Newton::Iterate
   {
-    Iterate(NonlinearProblem &problem,
-            double            residual_tolerance,
-            TangentMatrix    &tangent)
+    Iterate(base::NonlinearProblem &problem,
+            double                  residual_tolerance,
+            base::TangentMatrix    &tangent)
         : tangent(tangent), residual(problem.sparsity().n_rows()),
           trial_residual(residual.size()), step_increment(residual.size()),
           prediction(residual_tolerance)
@@ -316,8 +317,8 @@ namespace coshell::solvers
       problem.reinit_tangent(tangent);
     }
 
-    TangentMatrix &tangent;
-    Vector<double> residual, trial_residual;
+    base::TangentMatrix &tangent;
+    Vector<double>       residual, trial_residual;
     /// The sum of the corrections applied in this solve.
     Vector<double> step_increment;
     /// The energy |du.r| of the first correction, the yardstick of the
@@ -334,8 +335,8 @@ namespace coshell::solvers
     bool evaluated = false;
   };
 
-  unsigned int Newton::solve(NonlinearProblem &problem,
-                             const Observer   &observer) const
+  unsigned int Newton::solve(base::NonlinearProblem &problem,
+                             const Observer         &observer) const
   {
     problem.begin_solve();
     Iterate it(problem, parameters_.residual_tolerance, tangent_);
@@ -377,7 +378,8 @@ namespace coshell::solvers
     }
   }
 
-  double Newton::judge_residual(NonlinearProblem &problem, Iterate &it) const
+  double Newton::judge_residual(base::NonlinearProblem &problem,
+                                Iterate                &it) const
   {
     const double relative_residual =
         it.residual.l2_norm() / std::max(problem.force_scale(), 1e-300);
@@ -391,11 +393,11 @@ namespace coshell::solvers
     return relative_residual;
   }
 
-  void Newton::correct(NonlinearProblem &problem,
-                       Iterate          &it,
-                       unsigned int      iteration,
-                       double            relative_residual,
-                       const Observer   &observer) const
+  void Newton::correct(base::NonlinearProblem &problem,
+                       Iterate                &it,
+                       unsigned int            iteration,
+                       double                  relative_residual,
+                       const Observer         &observer) const
   {
     Vector<double> du = correction(problem, it.tangent, it.residual);
     // The energy slope along du; negative: du climbs the energy.
@@ -443,11 +445,11 @@ namespace coshell::solvers
                 energy / it.first_energy});
   }
 
-  double Newton::single_correction(NonlinearProblem &problem,
-                                   const Observer   &observer) const
+  double Newton::single_correction(base::NonlinearProblem &problem,
+                                   const Observer         &observer) const
   {
     problem.begin_solve();
-    TangentMatrix &tangent = tangent_;
+    base::TangentMatrix &tangent = tangent_;
     problem.reinit_tangent(tangent);
     assemble_for_solver(problem, tangent);
     Vector<double> residual(problem.sparsity().n_rows());

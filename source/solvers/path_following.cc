@@ -45,31 +45,6 @@ namespace coshell::solvers
                       "length: Crisfield's cylindrical arc-length method, "
                       "which follows limit points and snap-through (loads "
                       "only, no prescribed motions).");
-    prm.declare_entry("Tangent", "consistent",
-                      Patterns::Selection("consistent|symmetric|paper"),
-                      "consistent: exact derivative of the co-rotational "
-                      "internal force (quadratic convergence, non-symmetric: "
-                      "UMFPACK); symmetric: its symmetric part (exact at "
-                      "equilibrium; Cholesky with Linear solver/Method = "
-                      "cholmod, which falls back to UMFPACK where the "
-                      "matrix is not positive definite); paper: the "
-                      "approximation R K R^T of Comas et al. 2010.");
-    prm.declare_entry(
-        "Geometric stiffness", "auto",
-        Patterns::Selection("auto|current forces|extrapolated forces"),
-        "Which local forces of each co-rotational element drive the "
-        "terms of the tangent that are linear in them (the geometric "
-        "stiffness and the rotation-update term). current forces: those "
-        "of the current iterate, the exact derivative of the residual. "
-        "extrapolated forces: K_l (d + J dp), the local forces of the "
-        "previous iterate carried along that iterate's linearization to "
-        "the current one, as in the mixed-integration-point Newton of "
-        "Magisano, Leonetti & Garcea (2017): the same solution, the same "
-        "residual, far fewer iterations on thin shells, where a "
-        "correction's spurious membrane forces spoil the next tangent. "
-        "auto: extrapolated forces in static analyses until a step fails, "
-        "then current forces for the rest of the stage; current forces in "
-        "dynamic ones (doc/performance.md).");
     declare_step_control_entries(prm);
     NewtonParameters::declare_parameters(prm);
     prm.declare_entry("Maximum arc-length steps", "200", Patterns::Integer(1),
@@ -85,13 +60,7 @@ namespace coshell::solvers
   void PathFollowing::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Nonlinear solver");
-    method_                   = prm.get("Method");
-    const std::string tangent = prm.get("Tangent");
-    tangent_ = tangent == "paper" ? element::CorotationalTangent::paper
-               : tangent == "symmetric"
-                   ? element::CorotationalTangent::symmetric
-                   : element::CorotationalTangent::consistent;
-    geometric_stiffness_  = prm.get("Geometric stiffness");
+    method_               = prm.get("Method");
     load_steps_           = prm.get_integer("Load steps");
     max_step_cuts_        = prm.get_integer("Maximum step cuts");
     easy_iterations_      = prm.get_integer("Easy step iterations");
@@ -101,23 +70,6 @@ namespace coshell::solvers
     max_load_factor_      = prm.get_double("Maximum load factor");
     newton_.parse_parameters(prm);
     prm.leave_subsection();
-  }
-
-  element::CorotationalTangent PathFollowing::tangent() const
-  {
-    return tangent_;
-  }
-
-  bool PathFollowing::extrapolated_geometric_stiffness(bool dynamic) const
-  {
-    if (geometric_stiffness_ == "auto")
-      return !dynamic;
-    return geometric_stiffness_ == "extrapolated forces";
-  }
-
-  bool PathFollowing::exact_tangent_after_failure() const
-  {
-    return geometric_stiffness_ == "auto";
   }
 
   const std::string &PathFollowing::method() const
@@ -138,7 +90,7 @@ namespace coshell::solvers
   /// Working data of one run.
   struct PathFollowing::Run
   {
-    EvolutionProblem          &problem;
+    base::EvolutionProblem    &problem;
     LinearSolver              &linear_solver;
     const std::vector<double> &stops;
     const StepObserver        &on_step;
@@ -253,8 +205,8 @@ namespace coshell::solvers
   /// Returns the iterations; throws NewtonFailure.
   unsigned int PathFollowing::arc_length_step(Run &run, double arc) const
   {
-    EvolutionProblem &problem = run.problem;
-    TangentMatrix     tangent;
+    base::EvolutionProblem &problem = run.problem;
+    base::TangentMatrix     tangent;
     problem.reinit_tangent(tangent);
     Vector<double> residual(problem.sparsity().n_rows()), load;
     problem.set_path_parameter(run.parameter);
@@ -311,16 +263,22 @@ namespace coshell::solvers
   /// first).
   void PathFollowing::arc_length_path(Run &run) const
   {
-    TangentMatrix tangent;
+    base::TangentMatrix tangent;
     run.problem.reinit_tangent(tangent);
     Vector<double> residual(run.problem.sparsity().n_rows()), load;
     run.problem.set_path_parameter(0);
     run.problem.path_direction(load);
     run.problem.evaluate(residual, &tangent);
     run.linear_solver.factorize(tangent, run.problem.symmetric_tangent());
-    const double   first_arc = run.solve(load).l2_norm() / load_steps_;
-    StepController control(
-        {first_arc, 0, 4 * first_arc, max_step_cuts_, 4, 1.5, cut_factor_});
+    const double first_arc = run.solve(load).l2_norm() / load_steps_;
+    // The arc grows more cautiously than a load step (past a limit point
+    // the path turns) and at most to four first arcs.
+    constexpr double       largest_arc_in_first_arcs = 4;
+    constexpr unsigned int arc_easy_iterations       = 4;
+    constexpr double       arc_growth_factor         = 1.5;
+    StepController control({first_arc, 0, largest_arc_in_first_arcs * first_arc,
+                            max_step_cuts_, arc_easy_iterations,
+                            arc_growth_factor, cut_factor_});
     while (run.parameter < max_load_factor_ - 1e-12 &&
            run.step < max_arc_length_steps_)
     {
@@ -341,7 +299,7 @@ namespace coshell::solvers
     }
   }
 
-  void PathFollowing::run(EvolutionProblem          &problem,
+  void PathFollowing::run(base::EvolutionProblem    &problem,
                           LinearSolver              &linear_solver,
                           const std::vector<double> &stops,
                           const StepObserver        &on_step,

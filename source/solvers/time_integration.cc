@@ -101,10 +101,11 @@ namespace coshell::solvers
   {
     /// The nonlinear problem of one time step: moving the configuration
     /// moves the rates with it.
-    class StepProblem : public NonlinearProblem
+    class StepProblem : public base::NonlinearProblem
     {
     public:
-      StepProblem(EvolutionProblem &problem, TimeIntegration::Scheme &scheme)
+      StepProblem(base::EvolutionProblem  &problem,
+                  TimeIntegration::Scheme &scheme)
           : problem_(problem), scheme_(scheme)
       {
       }
@@ -116,11 +117,11 @@ namespace coshell::solvers
       {
         problem_.begin_solve();
       }
-      void reinit_tangent(TangentMatrix &K) const override
+      void reinit_tangent(base::TangentMatrix &K) const override
       {
         problem_.reinit_tangent(K);
       }
-      void evaluate(Vector<double> &r, TangentMatrix *K) override
+      void evaluate(Vector<double> &r, base::TangentMatrix *K) override
       {
         problem_.evaluate(r, K);
       }
@@ -192,7 +193,7 @@ namespace coshell::solvers
       }
 
     private:
-      EvolutionProblem        &problem_;
+      base::EvolutionProblem  &problem_;
       TimeIntegration::Scheme &scheme_;
       Vector<double>           q_;
     };
@@ -201,9 +202,9 @@ namespace coshell::solvers
     /// is a step like any other: the collision filter scales it. It
     /// certifies the straight path to the predicted position, so a scaled
     /// SE(3) step is set as a straight one.
-    void set_filtered_prediction(EvolutionProblem     &problem,
-                                 const Vector<double> &q,
-                                 Vector<double>       &displacement)
+    void set_filtered_prediction(base::EvolutionProblem &problem,
+                                 const Vector<double>   &q,
+                                 Vector<double>         &displacement)
     {
       problem.step_displacement(q, displacement);
       const double admissible = problem.admissible_fraction(displacement);
@@ -218,7 +219,7 @@ namespace coshell::solvers
 
     /// Starts the step of size h to 'time': the scheme's coefficients and
     /// its predictor, filtered, as the step's first increment.
-    void start_step(EvolutionProblem        &problem,
+    void start_step(base::EvolutionProblem  &problem,
                     TimeIntegration::Scheme &scheme,
                     double                   time,
                     double                   h,
@@ -342,6 +343,9 @@ namespace coshell::solvers
     prm.declare_entry("Step growth factor", "1.5", Patterns::Double(1),
                       "Growth of the time step after an easy step. Unit: "
                       "dimensionless.");
+    prm.declare_entry("Step cut factor", "0.5", Patterns::Double(0.01, 0.99),
+                      "A failed or rejected step is retried with the step "
+                      "size times this. Unit: dimensionless.");
     prm.declare_entry(
         "Energy growth limit", "0", Patterns::Double(0),
         "Energy guard (0: off). A converged step is "
@@ -375,6 +379,7 @@ namespace coshell::solvers
     max_step_cuts_       = prm.get_integer("Maximum step cuts");
     easy_iterations_     = prm.get_integer("Easy step iterations");
     growth_factor_       = prm.get_double("Step growth factor");
+    cut_factor_          = prm.get_double("Step cut factor");
     progress_interval_   = prm.get_double("Progress interval");
     energy_growth_limit_ = prm.get_double("Energy growth limit");
     prm.leave_subsection();
@@ -420,13 +425,13 @@ namespace coshell::solvers
 
   /// M vdot_0 = r(q_0, v_0, vdot = 0): the acceleration in equilibrium
   /// with the initial forces, which second-order accuracy needs.
-  void TimeIntegration::initial_acceleration(EvolutionProblem &problem,
+  void TimeIntegration::initial_acceleration(base::EvolutionProblem &problem,
                                              LinearSolver &linear_solver) const
   {
     problem.acceleration() = 0;
     problem.set_rate_coefficients(0, 0);
-    Vector<double> residual(problem.sparsity().n_rows());
-    TangentMatrix  mass;
+    Vector<double>      residual(problem.sparsity().n_rows());
+    base::TangentMatrix mass;
     problem.reinit_tangent(mass);
     problem.evaluate(residual, nullptr);
     problem.mass_matrix(mass);
@@ -437,7 +442,7 @@ namespace coshell::solvers
     problem.acceleration() = acceleration;
   }
 
-  unsigned int TimeIntegration::run(EvolutionProblem        &problem,
+  unsigned int TimeIntegration::run(base::EvolutionProblem  &problem,
                                     LinearSolver            &linear_solver,
                                     const NewtonParameters  &newton_parameters,
                                     double                   start,
@@ -456,7 +461,7 @@ namespace coshell::solvers
     StepController control(
         {resume ? carry->step_size : std::min(time_step_, max_time_step_),
          min_time_step_, max_time_step_, max_step_cuts_, easy_iterations_,
-         growth_factor_, 0.5});
+         growth_factor_, cut_factor_});
     problem.set_time(start);
     if (resume)
       scheme.a_n = carry->pseudo_acceleration;

@@ -16,9 +16,8 @@ namespace coshell::solvers
     // Row storage of A is column storage of its transpose: UMFPACK factors
     // A^T and solves with the transposed system (UMFPACK_At), giving A x = b.
     CompressedRows matrix, analysed;
-    void          *symbolic   = nullptr;
-    void          *numeric    = nullptr;
-    unsigned int   n_analyses = 0;
+    void          *symbolic = nullptr;
+    void          *numeric  = nullptr;
     double         control[UMFPACK_CONTROL];
     /// The same with no iterative refinement (apply_factors).
     double control_no_refinement[UMFPACK_CONTROL];
@@ -53,7 +52,6 @@ namespace coshell::solvers
           matrix.values.data(), &symbolic, control, nullptr);
       check(status, "symbolic analysis");
       analysed = matrix;
-      ++n_analyses;
     }
 
     static void check(int status, const std::string &stage)
@@ -112,10 +110,5 @@ namespace coshell::solvers
         d.matrix.values.data(), x.begin(), b.begin(), d.numeric,
         d.control_no_refinement, nullptr);
     Data::check(status, "solve with the kept factors");
-  }
-
-  unsigned int UmfpackSolver::n_symbolic_analyses() const
-  {
-    return data_->n_analyses;
   }
 } // namespace coshell::solvers

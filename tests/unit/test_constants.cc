@@ -1,4 +1,4 @@
-#include <coshell/io/constants.h>
+#include <coshell/base/constants.h>
 #include <coshell/model/rigid_motion.h>
 
 #include <deal.II/base/parameter_handler.h>
@@ -11,7 +11,7 @@
 
 namespace
 {
-  using coshell::io::Constants;
+  using coshell::base::Constants;
 
   /// Parses 'values' (and 'positive', 'changes') as a prm's Constants
   /// subsection.
@@ -52,14 +52,14 @@ TEST(Constants, ValuesMayBeExpressionsOfEarlierConstants)
   parse_constants("speed = 5, start = -6.9, tip = 15, out = 1.3, "
                   "push = out + (tip - start) / speed, "
                   "later = max(push, 2 * pi)");
-  const auto &constants = coshell::io::expression_constants();
+  const auto &constants = coshell::base::expression_constants();
   EXPECT_DOUBLE_EQ(constants.at("push"), 1.3 + 21.9 / 5);
   EXPECT_DOUBLE_EQ(constants.at("later"), 2 * M_PI);
-  EXPECT_DOUBLE_EQ(coshell::io::evaluate_constant_expression(
+  EXPECT_DOUBLE_EQ(coshell::base::evaluate_constant_expression(
                        "push - out", constants, "Stage 2/Duration"),
                    21.9 / 5);
   const auto named =
-      coshell::io::parse_named_values("a = tip, b = 0.45", "Gmsh parameters");
+      coshell::base::parse_named_values("a = tip, b = 0.45", "Gmsh parameters");
   ASSERT_EQ(named.size(), 2u);
   EXPECT_EQ(named[0].first, "a");
   EXPECT_DOUBLE_EQ(named[0].second, 15);
@@ -126,7 +126,7 @@ TEST(Constants, ChangesReplaceValuesWhereTheyStand)
   const std::string values =
       "out = 1.3, speed = 5, push = out + 21.9 / speed, before = 2";
   parse_constants(values, "speed", "speed = 1.5, before = out * 2");
-  const auto &constants = coshell::io::expression_constants();
+  const auto &constants = coshell::base::expression_constants();
   EXPECT_DOUBLE_EQ(constants.at("speed"), 1.5);
   EXPECT_DOUBLE_EQ(constants.at("push"), 1.3 + 21.9 / 1.5);
   EXPECT_DOUBLE_EQ(constants.at("before"), 2.6);

@@ -5,11 +5,11 @@
 // linearized step reports its load with); the same tangent check for
 // self contact.
 
+#include <coshell/base/expressions.h>
+#include <coshell/base/tangent_matrix.h>
 #include <coshell/contact/contact.h>
-#include <coshell/io/expressions.h>
 #include <coshell/mesh/mesh.h>
 #include <coshell/model/shell_problem.h>
-#include <coshell/solvers/tangent_matrix.h>
 
 #include <deal.II/base/multithread_info.h>
 #include <deal.II/grid/tria_description.h>
@@ -42,9 +42,9 @@ namespace
     obstacle.triangles   = {{0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}};
     obstacle.vertex_area = {1, 1, 1, 1, 1}; // not used by contact
     obstacle.motion.translation =
-        io::parse_expressions<1>("0; 0; 0", 3, "x,t", true, "t", "test");
+        base::parse_expressions<1>("0; 0; 0", 3, "x,t", true, "t", "test");
     obstacle.motion.angle =
-        io::parse_expressions<1>("0", 1, "x,t", true, "t", "test");
+        base::parse_expressions<1>("0", 1, "x,t", true, "t", "test");
     obstacle.motion.axis          = dealii::Tensor<1, 3>({0, 0, 1});
     obstacle.friction_coefficient = friction;
     return obstacle;
@@ -582,7 +582,7 @@ TEST(ContactAssembly, BlocksMadeBesideTheCellsAreThoseMadeInlineToTheBit)
   {
     dealii::MultithreadInfo::set_thread_limit(limit);
     EXPECT_EQ(dealii::MultithreadInfo::n_threads(), limit);
-    std::pair<Vector<double>, solvers::TangentMatrix> result;
+    std::pair<Vector<double>, base::TangentMatrix> result;
     result.first.reinit(n);
     problem.reinit_tangent(result.second);
     problem.evaluate(result.first, &result.second);
@@ -635,10 +635,10 @@ TEST(ContactAssembly, PairsSkippedByTheSearchClockAreThoseOutOfReach)
   UnitPlate                  plate;
   contact::ContactParameters parameters = barrier_parameters();
   parameters.obstacles = {knife(0.3, 0.01, 0.57), plane(-0.58, 0)};
-  parameters.obstacles[1].motion.translation =
-      io::parse_expressions<1>("0; 0; -0.002 * t", 3, "x,t", true, "t", "test");
-  parameters.obstacles[0].motion.translation =
-      io::parse_expressions<1>("0; 0; 0.001 * t", 3, "x,t", true, "t", "test");
+  parameters.obstacles[1].motion.translation = base::parse_expressions<1>(
+      "0; 0; -0.002 * t", 3, "x,t", true, "t", "test");
+  parameters.obstacles[0].motion.translation = base::parse_expressions<1>(
+      "0; 0; 0.001 * t", 3, "x,t", true, "t", "test");
   contact::Contact searched(plate.model, parameters);
   searched.check_initial_configuration(plate.state, 0);
   contact::ContactContribution contribution(searched);

@@ -6,9 +6,9 @@
 // lower triangle to the bit and leave the rest zero; mirrored, it is the
 // whole matrix of symmetric blocks.
 
+#include <coshell/base/tangent_matrix.h>
 #include <coshell/element/shell_element.h>
 #include <coshell/model/direct_scatter.h>
-#include <coshell/solvers/tangent_matrix.h>
 
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
@@ -158,7 +158,7 @@ TEST(LowerTriangleScatter, SameLowerTriangleToTheBitAndMirroredTheWhole)
         dsp.add(i, j);
   SparsityPattern pattern;
   pattern.copy_from(dsp);
-  coshell::solvers::TangentMatrix whole, lower;
+  coshell::base::TangentMatrix whole, lower;
   whole.reinit(pattern);
   lower.reinit(pattern);
   lower.set_lower_only(true);

@@ -83,7 +83,7 @@ namespace
     /// The assembled (here unconstrained) mass matrix, dense.
     dealii::FullMatrix<double> mass_matrix()
     {
-      solvers::TangentMatrix mass;
+      base::TangentMatrix mass;
       problem->reinit_tangent(mass);
       problem->mass_matrix(mass);
       dealii::FullMatrix<double> full;
@@ -316,7 +316,7 @@ TEST(Inertia, InertiaForceIsMinusMassTimesAcceleration)
   plate.state.acceleration() = plate.uniform(a0, alpha);
   const auto M               = plate.mass_matrix();
   plate.problem->set_rate_coefficients(400, 20);
-  solvers::TangentMatrix tangent;
+  base::TangentMatrix tangent;
   plate.problem->reinit_tangent(tangent);
   tangent.zero();
   Vector<double> residual(plate.model.n_dofs());

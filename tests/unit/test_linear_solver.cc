@@ -333,9 +333,9 @@ TEST(LinearSolverLowerTriangle, ATangentAssembledBelowItsDiagonalIsSolvedWhole)
   // Shifted by -3.9 the operator is indefinite (Gershgorin, above).
   for (const double shift : {0.0, -3.9})
   {
-    Tridiagonal                     whole(200);
-    const SparseMatrix<double>     &matrix = whole.set_symmetric(shift);
-    coshell::solvers::TangentMatrix lower;
+    Tridiagonal                  whole(200);
+    const SparseMatrix<double>  &matrix = whole.set_symmetric(shift);
+    coshell::base::TangentMatrix lower;
     lower.reinit(whole.pattern);
     lower.set_lower_only(true);
     lower.zero();
@@ -364,8 +364,8 @@ TEST(LinearSolverLowerTriangle, OnlyCholmodWithoutKeptFactorsReadsIt)
   configure(kept, {{"Method", "cholmod"}, {"Reuse factorization", "true"}});
   EXPECT_FALSE(umfpack.reads_lower_triangle(true));
   EXPECT_FALSE(kept.reads_lower_triangle(true));
-  Tridiagonal                     system(10);
-  coshell::solvers::TangentMatrix lower;
+  Tridiagonal                  system(10);
+  coshell::base::TangentMatrix lower;
   lower.reinit(system.pattern);
   lower.set_lower_only(true);
   lower.zero();

@@ -14,19 +14,19 @@
 namespace
 {
   using namespace dealii;
+  using coshell::base::NonlinearProblem;
+  using coshell::base::TangentMatrix;
   using coshell::solvers::LinearSolver;
   using coshell::solvers::Newton;
   using coshell::solvers::NewtonFailure;
   using coshell::solvers::NewtonIteration;
   using coshell::solvers::NewtonParameters;
-  using coshell::solvers::NonlinearProblem;
   using coshell::solvers::StepController;
-  using coshell::solvers::TangentMatrix;
 
   /// r_i(x) = load_i - (k x_i + c x_i^3) - coupling (x_i - x_j), i != j;
   /// unknown 'fixed' (if any) is prescribed to 'prescribed_value' through
   /// the pending-increment mechanism.
-  class CubicSprings : public NonlinearProblem
+  class CubicSprings : public coshell::base::NonlinearProblem
   {
   public:
     CubicSprings(std::vector<double> load,
@@ -48,7 +48,8 @@ namespace
       return pattern_;
     }
 
-    void evaluate(Vector<double> &r, TangentMatrix *tangent) override
+    void evaluate(Vector<double>               &r,
+                  coshell::base::TangentMatrix *tangent) override
     {
       SparseMatrix<double> *K = tangent ? &tangent->serial() : nullptr;
       scale_                  = 0;
@@ -302,7 +303,8 @@ TEST(Newton, LineSearchEvaluatesEachScaleOnce)
   {
   public:
     TooStiffTangent() : CubicSprings({1.0}, 0.0) {}
-    void evaluate(Vector<double> &r, TangentMatrix *tangent) override
+    void evaluate(Vector<double>               &r,
+                  coshell::base::TangentMatrix *tangent) override
     {
       CubicSprings::evaluate(r, tangent);
       if (tangent)

@@ -27,11 +27,11 @@
 namespace
 {
   using namespace dealii;
-  using coshell::solvers::EvolutionProblem;
+  using coshell::base::EvolutionProblem;
+  using coshell::base::TangentMatrix;
   using coshell::solvers::LinearSolver;
   using coshell::solvers::NewtonFailure;
   using coshell::solvers::PathFollowing;
-  using coshell::solvers::TangentMatrix;
 
   /// r_i = s P_i - f_i(x_i), uncoupled, with f_i and f_i' given. The force
   /// scale has a floor: near s = 0 both forces vanish, and |r| must still

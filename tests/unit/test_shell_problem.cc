@@ -87,7 +87,7 @@ namespace
   struct ElasticPlate : PlateMesh
   {
     model::ShellProblem    problem;
-    solvers::TangentMatrix tangent;
+    base::TangentMatrix    tangent;
     dealii::Vector<double> residual;
 
     explicit ElasticPlate(bool extrapolated, bool exact_after_failure = false)
@@ -205,8 +205,9 @@ TEST(InternalForce, AFailedStepLeavesTheStageOnTheExactTangent)
 }
 
 // A symmetric tangent assembled below its diagonal only, for CHOLMOD
-// (TangentMatrix::set_lower_only), is the whole one's lower triangle to
-// the bit, with the same residual, and mirrored it is the whole tangent.
+// (coshell::base::TangentMatrix::set_lower_only), is the whole one's lower
+// triangle to the bit, with the same residual, and mirrored it is the whole
+// tangent.
 TEST(ShellProblem, AssemblesTheLowerTriangleAloneToTheBit)
 {
   PlateMesh                                         plate;
@@ -221,7 +222,7 @@ TEST(ShellProblem, AssemblesTheLowerTriangleAloneToTheBit)
   for (unsigned int k = 0; k < deformation.size(); ++k)
     deformation[k] = 0.1 * std::sin(1.7 * (k + 1));
   problem.apply_increment(deformation);
-  solvers::TangentMatrix whole, lower;
+  base::TangentMatrix whole, lower;
   problem.reinit_tangent(whole);
   problem.reinit_tangent(lower);
   lower.set_lower_only(true);

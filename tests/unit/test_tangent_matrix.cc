@@ -1,10 +1,11 @@
-// The distributed tangent's pieces on one rank: RowsOf, through which terms
-// that every rank computes alike reach a distributed matrix once, passes the
-// rows it is given (constraints resolved as for a deal.II matrix, constrained
-// diagonals included) and drops the others; TangentMatrix builds a fresh
-// matrix on its pattern once the solver has taken the last one.
-#include <coshell/solvers/parallel_environment.h>
-#include <coshell/solvers/tangent_matrix.h>
+// The distributed tangent's pieces on one rank: RowsOf, through
+// which terms that every rank computes alike reach a distributed matrix once,
+// passes the rows it is given (constraints resolved as for a deal.II matrix,
+// constrained diagonals included) and drops the others;
+// TangentMatrix builds a fresh matrix on its pattern once the
+// solver has taken the last one.
+#include <coshell/base/parallel_environment.h>
+#include <coshell/base/tangent_matrix.h>
 
 #include <deal.II/lac/affine_constraints.templates.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
@@ -16,8 +17,8 @@
 namespace
 {
   using namespace dealii;
-  using coshell::solvers::RowsOf;
-  using coshell::solvers::TangentMatrix;
+  using coshell::base::RowsOf;
+  using coshell::base::TangentMatrix;
 
   constexpr unsigned int n = 5;
 
@@ -55,7 +56,7 @@ namespace
 
 TEST(RowsOf, PassesTheGivenRowsAsADealIIMatrixGetsThemAndDropsTheOthers)
 {
-  coshell::solvers::ensure_mpi_initialized();
+  coshell::base::ensure_mpi_initialized();
   const auto                                 constraints = two_constraints();
   const std::vector<types::global_dof_index> dofs        = {3, 1, 4, 0};
   SparsityPattern                            serial_pattern;
@@ -69,7 +70,7 @@ TEST(RowsOf, PassesTheGivenRowsAsADealIIMatrixGetsThemAndDropsTheOthers)
   TrilinosWrappers::SparseMatrix matrix;
   matrix.reinit(complete_index_set(n), complete_index_set(n), full_pattern(),
                 MPI_COMM_SELF);
-  RowsOf owned(matrix, rows);
+  coshell::base::RowsOf owned(matrix, rows);
   constraints.distribute_local_to_global(block(), dofs, owned);
   matrix.compress(VectorOperation::add);
 
@@ -84,14 +85,14 @@ TEST(RowsOf, PassesTheGivenRowsAsADealIIMatrixGetsThemAndDropsTheOthers)
 
 TEST(TangentMatrix, BuildsAFreshMatrixOnItsPatternOnceTheLastIsTaken)
 {
-  coshell::solvers::ensure_mpi_initialized();
+  coshell::base::ensure_mpi_initialized();
   TrilinosWrappers::SparsityPattern pattern(complete_index_set(n),
                                             MPI_COMM_SELF);
   pattern.add(2, 3);
   for (unsigned int i = 0; i < n; ++i)
     pattern.add(i, i);
   pattern.compress();
-  TangentMatrix tangent;
+  coshell::base::TangentMatrix tangent;
   tangent.reinit(pattern);
   ASSERT_TRUE(tangent.distributed());
   tangent.zero();
@@ -119,7 +120,7 @@ TEST(TangentMatrix, KeepsItsStorageWhileThePatternVersionStays)
     diagonal.add(i, i);
   second.copy_from(diagonal);
 
-  TangentMatrix tangent;
+  coshell::base::TangentMatrix tangent;
   tangent.reinit(first, 7);
   tangent.serial().set(2, 3, 1.5);
   const double *storage = &tangent.serial()(0, 0);

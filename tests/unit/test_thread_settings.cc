@@ -1,4 +1,4 @@
-#include <coshell/solvers/parallel_environment.h>
+#include <coshell/base/parallel_environment.h>
 
 #include <deal.II/base/parameter_handler.h>
 
@@ -13,11 +13,11 @@ namespace
   void set_threads(const std::string &threads)
   {
     dealii::ParameterHandler prm;
-    coshell::solvers::ThreadSettings::declare_parameters(prm);
+    coshell::base::ThreadSettings::declare_parameters(prm);
     prm.enter_subsection("Parallel");
     prm.set("Threads", threads);
     prm.leave_subsection();
-    coshell::solvers::ThreadSettings().parse_parameters(prm);
+    coshell::base::ThreadSettings().parse_parameters(prm);
   }
 
   /// The team size of a region that names its own thread count, as
@@ -46,12 +46,12 @@ TEST(ThreadSettings, NoRegionThatAsksForMoreThreadsIsActiveAtAnyThreadCount)
   EXPECT_EQ(omp_get_max_active_levels(), 0);
   EXPECT_EQ(team_of_region_asking_for_four(), 1);
   EXPECT_EQ(omp_get_max_threads(),
-            static_cast<int>(coshell::solvers::ThreadSettings::n_threads()));
+            static_cast<int>(coshell::base::ThreadSettings::n_threads()));
 }
 
-// The BLAS on one thread while a SerialBlas lives, on the scheduler's
-// count before and after (OpenBLAS, found as coshell finds it; the test
-// says nothing where the process has another BLAS).
+// The BLAS on one thread while a SerialBlas lives, on the
+// scheduler's count before and after (OpenBLAS, found as coshell finds it; the
+// test says nothing where the process has another BLAS).
 TEST(ThreadSettings, SerialBlasRunsTheBlasOnOneThreadWhileItLives)
 {
   const auto blas_threads = reinterpret_cast<int (*)()>(
@@ -59,19 +59,19 @@ TEST(ThreadSettings, SerialBlasRunsTheBlasOnOneThreadWhileItLives)
   if (!blas_threads)
     GTEST_SKIP() << "no OpenBLAS in this process";
   set_threads("2");
-  if (coshell::solvers::ThreadSettings::n_threads() < 2)
+  if (coshell::base::ThreadSettings::n_threads() < 2)
   {
     set_threads("0");
     GTEST_SKIP() << "one core: nothing to share";
   }
   EXPECT_EQ(blas_threads(), 2);
   {
-    const coshell::solvers::SerialBlas serial(true);
+    const coshell::base::SerialBlas serial(true);
     EXPECT_EQ(blas_threads(), 1);
   }
   EXPECT_EQ(blas_threads(), 2);
   {
-    const coshell::solvers::SerialBlas shared(false);
+    const coshell::base::SerialBlas shared(false);
     EXPECT_EQ(blas_threads(), 2);
   }
   set_threads("0");

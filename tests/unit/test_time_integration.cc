@@ -26,11 +26,11 @@
 namespace
 {
   using namespace dealii;
-  using coshell::solvers::EvolutionProblem;
+  using coshell::base::EvolutionProblem;
+  using coshell::base::TangentMatrix;
   using coshell::solvers::LinearSolver;
   using coshell::solvers::NewtonFailure;
   using coshell::solvers::NewtonParameters;
-  using coshell::solvers::TangentMatrix;
   using coshell::solvers::TimeIntegration;
 
   /// M xdd + C xd + K x = f(t) on a few DoFs, in the form the integrators

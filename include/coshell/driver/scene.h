@@ -1,6 +1,8 @@
 #pragma once
 
 #include <coshell/contact/contact.h>
+#include <coshell/driver/analyses.h>
+#include <coshell/driver/interactive.h>
 #include <coshell/driver/stage.h>
 #include <coshell/io/checkpoint.h>
 #include <coshell/io/json.h>
@@ -15,6 +17,7 @@
 #include <coshell/model/prescribed_motions.h>
 #include <coshell/model/quantities.h>
 #include <coshell/model/shell_problem.h>
+#include <coshell/model/tangent_settings.h>
 #include <coshell/solvers/linear_solver.h>
 #include <coshell/solvers/path_following.h>
 #include <coshell/solvers/time_integration.h>
@@ -39,6 +42,8 @@ namespace coshell::driver
                        const std::string              &file,
                        const std::vector<std::string> &overrides);
 
+  struct StagedOutput;
+
   /// A scene: mesh, element, boundary conditions, loads, quantities of
   /// interest, solver and output, all from one parameter file. Runs each
   /// refinement level and writes per-level results plus, for a study,
@@ -62,7 +67,7 @@ namespace coshell::driver
 
     /// Interactive coupling: dynamic stages advance to the target times
     /// read from 'commands', one per line, instead of running through,
-    /// and every step writes one line to 'replies' (protocol in
+    /// and every step writes one line to 'replies' (the protocol:
     /// doc/user-guide/interactive.md).
     void drive_interactively(std::istream &commands, std::ostream &replies);
 
@@ -83,49 +88,15 @@ namespace coshell::driver
     model::QuantitiesOfInterest quantities_;
     solvers::LinearSolver       linear_solver_;
     solvers::PathFollowing      path_following_;
+    model::TangentSettings      tangent_settings_;
     model::CorrectionLimits     correction_limits_;
-    std::string                 analysis_type_ = "linear static";
+    AnalysisType                analysis_type_ = AnalysisType::linear_static;
     model::PrescribedMotions    motions_;
     Stages                      stages_;
     model::InertiaParameters    inertia_;
     solvers::TimeIntegration    time_integration_;
-    unsigned int                n_modes_     = 6;
-    double                      modal_shift_ = 0;
+    ModalAnalysis               modal_analysis_;
     contact::ContactParameters  contact_;
-    /// An --interactive session, which spans the scene's dynamic stages:
-    /// a target past a stage's end carries on into the next dynamic
-    /// stage, and "quit" or the end of the input ends the run.
-    struct InteractiveSession
-    {
-      std::istream *commands = nullptr;
-      std::ostream *replies  = nullptr;
-      /// The input of the obstacles with an Input direction (none: no
-      /// obstacle takes input).
-      std::shared_ptr<contact::InputPath> input;
-      /// The target time (s) read and not reached yet.
-      std::optional<double> target;
-      /// "quit" or the end of the input was read: no later stage runs.
-      bool ended = false;
-      /// The simulated time (s) reached so far.
-      double reached = 0;
-      /// Simulated and wall time (s) of the integrations finished so far,
-      /// the start of the current one and its wall clock.
-      double                                simulated_s = 0, computing_s = 0;
-      double                                advance_from = 0;
-      std::chrono::steady_clock::time_point advance_started;
-
-      /// Simulated over computing time of the session up to 'time' of the
-      /// current integration; waiting for input is not counted.
-      double real_time_factor(double time) const;
-      /// The next target time, its input (if any) appended to the path
-      /// from 'now'; nothing at "quit" or the end of the input. Blank and
-      /// '#' lines are skipped; a line that is not a target is answered
-      /// with an error line.
-      std::optional<double> next_target(double now);
-      /// At 'now': the next target, if none is pending; "quit" or the end
-      /// of the input ends the session there.
-      void read_ahead(double now);
-    };
     std::optional<InteractiveSession> interactive_;
     io::VtuOutput                     output_;
     std::vector<io::LevelResult>      levels_;
@@ -141,10 +112,12 @@ namespace coshell::driver
     /// The time integrator's carry-over within the current dynamic stage.
     solvers::TimeIntegration::Carry carry_;
 
-    io::Json        run_level(unsigned int       level,
-                              const std::string &directory,
-                              std::ostream      &log);
-    io::LevelResult solve_linear(const model::ShellModel &model,
+    io::Json run_level(unsigned int       level,
+                       const std::string &directory,
+                       std::ostream      &log);
+    /// The level's analysis, chosen by Analysis/Type (the staged ones
+    /// run the stages).
+    io::LevelResult run_analysis(const model::ShellModel &model,
                                  const std::string       &directory,
                                  std::ostream            &log);
     /// Runs the stages (nonlinear static or dynamic) in order, carrying
@@ -152,7 +125,6 @@ namespace coshell::driver
     io::LevelResult run_stages(const model::ShellModel &model,
                                const std::string       &directory,
                                std::ostream            &log);
-    struct StagedOutput;
     /// The contact of the run (nothing when Contact is off), checked
     /// against the initial configuration, and its contact_forces.csv.
     std::unique_ptr<contact::Contact>
@@ -160,9 +132,6 @@ namespace coshell::driver
                   const model::ShellState &state,
                   StagedOutput            &out,
                   const std::string       &directory) const;
-    /// Opens the Contact/Obstacle k/Force file of every obstacle with one.
-    void open_obstacle_force_files(StagedOutput      &out,
-                                   const std::string &directory) const;
     /// Builds the stage's problem on 'state' and runs it.
     void run_stage(const Stage             &stage,
                    const model::ShellModel &model,
@@ -187,45 +156,20 @@ namespace coshell::driver
                     const std::string       &directory,
                     unsigned int             step,
                     double                   time);
-    /// Appends the step's rows to contact_forces.csv and the obstacles'
-    /// Force files.
-    void
-    record_contact(StagedOutput &out, unsigned int step, double time) const;
-    std::map<std::string, double>
-    step_quantities(const model::ShellModel    &model,
-                    const model::ShellState    &state,
-                    const model::InternalForce *internal) const;
-    /// Appends the dynamic step's row to time_history.csv (energies,
-    /// momenta, the contact's work and energy, the quantities of interest)
-    /// and keeps its quantities as the level's. 'known_strain_energy':
-    /// the state's, if the energy guard computed it already. The kinetic
-    /// measures are computed here, for the rows only.
-    void write_history_row(
-        const model::ShellProblem                  &problem,
-        const solvers::TimeIntegration::StepRecord &record,
-        unsigned int                                stage,
-        StagedOutput                               &out,
-        io::LevelResult                            &result,
-        std::optional<double> known_strain_energy = std::nullopt) const;
-    static void add_contact_work(const model::ShellProblem    &problem,
-                                 const dealii::Vector<double> &q,
-                                 StagedOutput                 &out);
-    void        run_static_stage(const Stage         &stage,
-                                 model::ShellProblem &problem,
-                                 StagedOutput        &out,
-                                 io::LevelResult     &result,
-                                 const std::string   &directory,
-                                 std::ostream        &log);
+    void run_static_stage(const Stage         &stage,
+                          model::ShellProblem &problem,
+                          StagedOutput        &out,
+                          io::LevelResult     &result,
+                          const std::string   &directory,
+                          std::ostream        &log);
     struct DynamicStageRun;
     /// Integrates a dynamic stage (or, interactively, up to each target),
     /// with its time history, contact rows, VTU, checkpoints and replies.
     void run_dynamic_stage(DynamicStageRun &run);
     /// The dynamic stage's parts: the forces at its start (or the
-    /// restart's) and its energy guard; the work and dissipation of a
-    /// converged step; the step's rows, files, checkpoint and reply; and
-    /// the pending row and totals at its end.
-    void        begin_dynamic_stage(DynamicStageRun &run);
-    static void account_step_energies(DynamicStageRun &run);
+    /// restart's) and its energy guard; the step's energies, rows, files,
+    /// checkpoint and reply; and the pending row and totals at its end.
+    void begin_dynamic_stage(DynamicStageRun &run);
     void
          record_dynamic_step(DynamicStageRun                            &run,
                              const solvers::TimeIntegration::StepRecord &record);
@@ -271,38 +215,15 @@ namespace coshell::driver
         const solvers::TimeIntegration::IterationObserver &on_iteration,
         const solvers::TimeIntegration::StepCheck         &check,
         std::ostream                                      &log);
-    /// The protocol's line for one step: time, the force on each
-    /// obstacle (N, magnitude, or the signed component along an Input
-    /// direction), the shell's centroid and the real-time factor so far;
-    /// and with driven obstacles, the slope line (reply_input_slopes).
+    /// The --interactive replies of one step (InteractiveSession): its
+    /// line and, with driven obstacles, its slope line.
     void reply_step(model::ShellProblem &problem,
                     const StagedOutput  &out,
-                    double               time,
-                    double               real_time_factor);
-    /// The slope line: the input s at 'time' and, per driven obstacle,
-    /// dF/ds of its force along its direction, as the tangent of the
-    /// state reached answers a change of s (a linearized step: its own
-    /// system, whose factors serve; Newton: one more assembly and
-    /// factorization).
-    void            reply_input_slopes(model::ShellProblem &problem,
-                                       contact::Contact    &contact,
-                                       unsigned int         step,
-                                       double               time);
-    io::LevelResult solve_modes(const model::ShellModel &model,
-                                const std::string       &directory,
-                                std::ostream            &log);
-    /// The supports of Boundary conditions, closed.
-    dealii::AffineConstraints<double>
-    support_constraints(const model::ShellModel &model) const;
+                    double               time);
     /// Supports less the released ones, plus the stage's motions.
     dealii::AffineConstraints<double>
     stage_constraints(const model::ShellModel &model, const Stage &stage) const;
 
-    /// The analyses by their Analysis/Type name.
-    using AnalysisRunner = io::LevelResult (Scene::*)(const model::ShellModel &,
-                                                      const std::string &,
-                                                      std::ostream &);
-    static const std::map<std::string, AnalysisRunner> &analyses();
     void check_analysis_choice() const;
     /// Throws if a dynamic stage or modal analysis has no mass.
     void require_mass(double mean_density) const;

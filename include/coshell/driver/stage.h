@@ -8,14 +8,30 @@
 
 namespace coshell::driver
 {
+  /// The analyses a scene or a stage runs (prm: Analysis/Type, Stage
+  /// k/Analysis type).
+  enum class AnalysisType
+  {
+    linear_static,
+    nonlinear_static,
+    dynamic,
+    modes
+  };
+
+  /// The AnalysisType of its prm name ("linear static", "nonlinear
+  /// static", "dynamic", "modes"); throws std::invalid_argument otherwise.
+  AnalysisType analysis_type(const std::string &name);
+  /// The prm name of an AnalysisType.
+  std::string analysis_name(AnalysisType type);
+
   /// One stage of a scene: an analysis over a time interval with its own
   /// loads, prescribed motions and released supports. The configuration
   /// carries over from one stage to the next.
   struct Stage
   {
     unsigned int number = 1;
-    /// "nonlinear static" or "dynamic".
-    std::string analysis = "nonlinear static";
+    /// nonlinear static or dynamic.
+    AnalysisType analysis = AnalysisType::nonlinear_static;
     /// Length of the stage, s (pseudo-time in statics).
     double duration = 1;
     /// Load factor as a function of (time t, stage fraction s).
@@ -50,7 +66,7 @@ namespace coshell::driver
     /// The default load factor of an analysis: a ramp s in statics, 1 in
     /// dynamics.
     static std::function<double(double, double)>
-    default_load_factor(const std::string &analysis);
+    default_load_factor(AnalysisType analysis);
 
   private:
     std::vector<Stage> stages_;

@@ -1,7 +1,7 @@
 #pragma once
 
+#include <coshell/base/parallel_environment.h>
 #include <coshell/element/shell_element.h>
-#include <coshell/solvers/parallel_environment.h>
 
 #include <deal.II/base/work_stream.h>
 #include <deal.II/dofs/dof_handler.h>
@@ -87,16 +87,15 @@ namespace coshell::model
       }
       distribute(copy);
     };
-    if (range == CellRange::owned && solvers::distributed())
+    if (range == CellRange::owned && base::distributed())
     {
       // The mesh is partitioned by subdomain id (METIS), one part per rank.
       using Filtered = dealii::FilteredIterator<CellIterator>;
-      const dealii::IteratorFilters::SubdomainEqualTo mine(
-          solvers::this_rank());
+      const dealii::IteratorFilters::SubdomainEqualTo mine(base::this_rank());
       dealii::WorkStream::run(Filtered(mine, dof_handler.begin_active()),
                               Filtered(mine, dof_handler.end()), worker, copier,
                               Scratch(), CellContribution());
-      if (solvers::any_rank(!first_error.empty()) && first_error.empty())
+      if (base::any_rank(!first_error.empty()) && first_error.empty())
         first_error = "an element on another rank failed (its message is "
                       "above)";
     }

@@ -29,7 +29,7 @@ namespace coshell::model
     /// vector) at 'dofs', which must be distinct. Couplings that the matrix's
     /// pattern lacks are left out, as ShellProblem::within_pattern() leaves
     /// them. With 'lower_only', only the entries with column <= row
-    /// (solvers::TangentMatrix::set_lower_only()).
+    /// (base::TangentMatrix::set_lower_only()).
     void add(const dealii::FullMatrix<double>                   &local,
              const dealii::Vector<double>                       &local_vector,
              const std::vector<dealii::types::global_dof_index> &dofs,

@@ -32,11 +32,6 @@ namespace coshell::model
                            dealii::Vector<double> &residual) const override;
     bool        symmetric_tangent() const override;
 
-    /// The unscaled load vector at a configuration (d r / d load factor),
-    /// unconstrained.
-    void load_vector(const ShellState       &state,
-                     dealii::Vector<double> &load) const;
-
   private:
     const ShellModel      &model_;
     dealii::Vector<double> dead_load_;

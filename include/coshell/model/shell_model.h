@@ -36,8 +36,7 @@ namespace coshell::model
   constexpr unsigned int dofs_per_vertex = 6;
 
   /// "ux" -> Component::ux etc.; throws naming the accepted names.
-  Component   parse_component(const std::string &name);
-  std::string component_name(unsigned int component);
+  Component parse_component(const std::string &name);
 
   /// The six global DoF indices of one mesh vertex.
   using VertexDofs = std::array<global_dof_index, dofs_per_vertex>;

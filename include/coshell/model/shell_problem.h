@@ -1,10 +1,10 @@
 #pragma once
 
+#include <coshell/base/nonlinear_problem.h>
 #include <coshell/model/contribution.h>
 #include <coshell/model/direct_scatter.h>
 #include <coshell/model/shell_model.h>
 #include <coshell/model/shell_state.h>
-#include <coshell/solvers/nonlinear_problem.h>
 
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/thread_management.h>
@@ -50,7 +50,7 @@ namespace coshell::model
   /// contributions. Prescribed motions enter as inhomogeneous constraints
   /// while the prescribed DoFs have not reached their values, that is on
   /// the first Newton iteration of a step (as in deal.II's step-44).
-  class ShellProblem : public solvers::EvolutionProblem
+  class ShellProblem : public base::EvolutionProblem
   {
   public:
     /// 'constraints' must be closed and homogeneous, and contain a line for
@@ -75,16 +75,16 @@ namespace coshell::model
     double time() const;
     double load_factor() const;
 
-    // solvers::NonlinearProblem
+    // base::NonlinearProblem
     const dealii::SparsityPattern &sparsity() const override;
     /// Under mpirun each rank holds its rows of the tangent and assembles
     /// its cells into it (a distributed Trilinos matrix).
-    void reinit_tangent(solvers::TangentMatrix &tangent) const override;
+    void reinit_tangent(base::TangentMatrix &tangent) const override;
     /// Grows the pattern by the vertex couplings the contributions ask
     /// for (self contact); rebuilt only when they change.
     void   begin_solve() override;
     void   evaluate(dealii::Vector<double> &residual,
-                    solvers::TangentMatrix *tangent) override;
+                    base::TangentMatrix    *tangent) override;
     double force_scale() const override;
     bool   prescribed_increment_pending() const override;
     bool   prescribed_move_blocked() const override;
@@ -102,7 +102,7 @@ namespace coshell::model
     bool use_convex_tangent() override;
     std::string failure_context() const override;
 
-    // solvers::EvolutionProblem
+    // base::EvolutionProblem
     void set_path_parameter(double s) override;
     void path_direction(dealii::Vector<double> &direction) override;
     void set_time(double time) override;
@@ -116,7 +116,7 @@ namespace coshell::model
     dealii::Vector<double> &acceleration() override;
     void set_rate_coefficients(double acceleration_coefficient,
                                double velocity_coefficient) override;
-    void mass_matrix(solvers::TangentMatrix &mass) override;
+    void mass_matrix(base::TangentMatrix &mass) override;
 
     /// Wall-clock seconds spent in evaluate() so far (assembly).
     double assembly_seconds() const;
@@ -157,7 +157,7 @@ namespace coshell::model
     PrescribedIncrementFunction                prescribed_;
     dealii::SparsityPattern                    sparsity_;
     /// Names sparsity_'s present contents for the tangents kept across
-    /// solves (solvers::TangentMatrix::reinit): new, unique in the
+    /// solves (base::TangentMatrix::reinit): new, unique in the
     /// process, each time it is made.
     std::uint64_t sparsity_version_ = 0;
     /// Under mpirun: this rank's rows of the same pattern.
@@ -176,7 +176,7 @@ namespace coshell::model
     /// follows sparsity_.
     CellScatter cell_scatter_;
     /// The evaluation's tangent takes only the entries with column <= row
-    /// (solvers::TangentMatrix::set_lower_only()); set while evaluate()
+    /// (base::TangentMatrix::set_lower_only()); set while evaluate()
     /// assembles.
     bool lower_only_ = false;
     /// Adds a cell's matrix (and vector, if given) into 'tangent'.
@@ -244,7 +244,7 @@ namespace coshell::model
     /// Adds the blocks of the contributions (contact pairs): those the
     /// preparation task of this evaluation made, else made now. Every rank
     /// finds the same blocks; a distributed tangent takes each row from the
-    /// rank that owns it (solvers::RowsOf).
+    /// rank that owns it (base::RowsOf).
     template<typename Matrix>
     void assemble_blocks(const EvaluationPoint  &at,
                          dealii::Vector<double> &residual,

@@ -1,6 +1,6 @@
 #pragma once
 
-#include <coshell/solvers/tangent_matrix.h>
+#include <coshell/base/tangent_matrix.h>
 
 #include <deal.II/base/index_set.h>
 #include <deal.II/base/parameter_handler.h>
@@ -43,14 +43,14 @@ namespace coshell::solvers
     /// distributed_rows(), assembled by the ranks together, and factorizes
     /// it or sets up its preconditioner; no rank holds the whole matrix.
     void factorize(dealii::TrilinosWrappers::SparseMatrix &&matrix);
-    /// A tangent assembled by a NonlinearProblem: the deal.II matrix as
+    /// A tangent assembled by a base::NonlinearProblem: the deal.II matrix as
     /// above, or the distributed one, which the solver takes over.
-    void factorize(TangentMatrix &tangent, bool symmetric);
+    void factorize(base::TangentMatrix &tangent, bool symmetric);
     /// Whether factorize() reads only the entries with column <= row of a
     /// tangent with this symmetry: CHOLMOD's, without kept factors (whose
     /// GMRES multiplies by the whole matrix). A tangent assembled so
-    /// (TangentMatrix::set_lower_only()) is mirrored if CHOLMOD refuses it
-    /// and UMFPACK takes over.
+    /// (base::TangentMatrix::set_lower_only()) is mirrored if CHOLMOD refuses
+    /// it and UMFPACK takes over.
     bool reads_lower_triangle(bool symmetric) const;
     /// The rows this rank holds under mpirun (see set_row_partition); empty
     /// on one rank, where the solvers take complete deal.II matrices.

@@ -1,7 +1,7 @@
 #pragma once
 
+#include <coshell/base/nonlinear_problem.h>
 #include <coshell/solvers/linear_solver.h>
-#include <coshell/solvers/nonlinear_problem.h>
 
 #include <deal.II/base/parameter_handler.h>
 
@@ -37,7 +37,7 @@ namespace coshell::solvers
     /// |r| / scale above this counts as divergence.
     double divergence_limit = 1e8;
     /// Climbing corrections in an attempt before Newton asks the problem
-    /// for a convex tangent (NonlinearProblem::use_convex_tangent()).
+    /// for a convex tangent (base::NonlinearProblem::use_convex_tangent()).
     unsigned int climbs_before_convex_tangent = 3;
 
     /// Declares the entries in the current subsection.
@@ -54,8 +54,8 @@ namespace coshell::solvers
     double       relative_energy;   ///< |du.r| / |du_0.r_0|
   };
 
-  /// Newton-Raphson on a NonlinearProblem. Knows no physics: it evaluates,
-  /// factorizes, solves, filters the step (line search, admissible
+  /// Newton-Raphson on a base::NonlinearProblem. Knows no physics: it
+  /// evaluates, factorizes, solves, filters the step (line search, admissible
   /// fraction) and judges convergence against the problem's force scale.
   class Newton
   {
@@ -67,22 +67,22 @@ namespace coshell::solvers
     /// Iterates from the problem's current state until converged; returns
     /// the number of corrections applied. Throws NewtonFailure, leaving the
     /// problem wherever it got.
-    unsigned int solve(NonlinearProblem &problem,
-                       const Observer   &observer = Observer()) const;
+    unsigned int solve(base::NonlinearProblem &problem,
+                       const Observer         &observer = Observer()) const;
 
     /// Exactly one correction from the current state, no convergence test
     /// (the linearized implicit scheme). Returns the relative residual
     /// before the correction. Throws NewtonFailure when the residual is not
     /// finite or a prescribed move was blocked (a jam).
-    double single_correction(NonlinearProblem &problem,
-                             const Observer   &observer = Observer()) const;
+    double single_correction(base::NonlinearProblem &problem,
+                             const Observer &observer = Observer()) const;
 
     /// Assembles the tangent at the problem's present state and
     /// factorizes it as an iteration would, without a correction: the
     /// linear solver's kept factors are then the present state's (for how
     /// a converged state answers a change of its data). The state is not
     /// changed.
-    void factorize_tangent(NonlinearProblem &problem) const;
+    void factorize_tangent(base::NonlinearProblem &problem) const;
 
   private:
     NewtonParameters parameters_;
@@ -91,15 +91,15 @@ namespace coshell::solvers
     /// next: a time step's solve would otherwise allocate and zero a
     /// matrix of the whole pattern before assembling (and zeroing) it.
     /// Made again only when the problem's pattern changes.
-    mutable TangentMatrix tangent_;
+    mutable base::TangentMatrix tangent_;
 
     /// Lets the problem assemble only what the linear solver reads.
-    void assemble_for_solver(const NonlinearProblem &problem,
-                             TangentMatrix          &tangent) const;
+    void assemble_for_solver(const base::NonlinearProblem &problem,
+                             base::TangentMatrix          &tangent) const;
     /// Factorizes the tangent and solves for the correction (distributed).
     dealii::Vector<double>
-    correction(NonlinearProblem             &problem,
-               TangentMatrix                &tangent,
+    correction(base::NonlinearProblem       &problem,
+               base::TangentMatrix          &tangent,
                const dealii::Vector<double> &residual) const;
     /// The line search's scale of a correction; whether it accepted an
     /// evaluated trial (left applied), and whether that trial assembled
@@ -110,12 +110,12 @@ namespace coshell::solvers
       bool   accepted     = false;
       bool   with_tangent = false;
     };
-    LineSearch line_search(NonlinearProblem             &problem,
+    LineSearch line_search(base::NonlinearProblem       &problem,
                            const dealii::Vector<double> &residual,
                            const dealii::Vector<double> &correction,
                            dealii::Vector<double>       &trial_residual,
-                           TangentMatrix                *tangent) const;
-    bool       apply_correction(NonlinearProblem       &problem,
+                           base::TangentMatrix          *tangent) const;
+    bool       apply_correction(base::NonlinearProblem &problem,
                                 const LineSearch       &search,
                                 bool                    next_with_tangent,
                                 dealii::Vector<double> &du,
@@ -125,17 +125,17 @@ namespace coshell::solvers
     struct Iterate;
     /// The residual's norm relative to the force scale, fed to the
     /// convergence prediction; throws when it is not finite or diverged.
-    double judge_residual(NonlinearProblem &problem, Iterate &it) const;
+    double judge_residual(base::NonlinearProblem &problem, Iterate &it) const;
     /// One correction: solve, step filter, line search, convergence
     /// measures, and the corrected iterate (evaluated if a trial was kept).
     /// A correction that climbs the energy once too often is dropped
     /// instead, unapplied and unobserved, when the problem can switch to
     /// its convex tangent: the next iteration corrects the same iterate.
-    void correct(NonlinearProblem &problem,
-                 Iterate          &it,
-                 unsigned int      iteration,
-                 double            relative_residual,
-                 const Observer   &observer) const;
+    void correct(base::NonlinearProblem &problem,
+                 Iterate                &it,
+                 unsigned int            iteration,
+                 double                  relative_residual,
+                 const Observer         &observer) const;
   };
 
   /// Step-size policy shared by load stepping, arc length and time

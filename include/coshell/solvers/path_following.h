@@ -1,9 +1,8 @@
 #pragma once
 
-#include <coshell/element/corotational.h>
+#include <coshell/base/nonlinear_problem.h>
 #include <coshell/solvers/linear_solver.h>
 #include <coshell/solvers/newton.h>
-#include <coshell/solvers/nonlinear_problem.h>
 
 #include <deal.II/base/parameter_handler.h>
 
@@ -14,7 +13,7 @@
 
 namespace coshell::solvers
 {
-  /// Static equilibrium path of an EvolutionProblem from path parameter 0
+  /// Static equilibrium path of an base::EvolutionProblem from path parameter 0
   /// to 1: Newton under parameter (load or displacement) control with step
   /// cutting, or Crisfield's cylindrical arc-length method (prm subsection
   /// "Nonlinear solver", which also holds Newton's settings).
@@ -35,30 +34,19 @@ namespace coshell::solvers
     /// Follows the path (parameter control: stopping exactly at every
     /// parameter in 'stops'; arc length: until the parameter reaches the
     /// maximum or the step limit). Throws NewtonFailure.
-    void run(EvolutionProblem          &problem,
+    void run(base::EvolutionProblem    &problem,
              LinearSolver              &linear_solver,
              const std::vector<double> &stops,
              const StepObserver        &on_step,
              const IterationObserver   &on_iteration,
              std::ostream              &log) const;
 
-    element::CorotationalTangent tangent() const;
-    /// Whether the co-rotational tangent's geometric terms use the local
-    /// forces extrapolated from the previous Newton iterate (see
-    /// "Geometric stiffness"), in a dynamic analysis or a static one.
-    bool extrapolated_geometric_stiffness(bool dynamic) const;
-    /// Whether a failed step returns the rest of its stage to the exact
-    /// tangent (Geometric stiffness = auto).
-    bool                    exact_tangent_after_failure() const;
     const std::string      &method() const;
     bool                    arc_length() const;
     const NewtonParameters &newton() const;
 
   private:
-    std::string                  method_ = "load control";
-    element::CorotationalTangent tangent_ =
-        element::CorotationalTangent::consistent;
-    std::string      geometric_stiffness_  = "auto";
+    std::string      method_               = "load control";
     unsigned int     load_steps_           = 10;
     unsigned int     max_step_cuts_        = 12;
     unsigned int     easy_iterations_      = 6;

@@ -1,8 +1,8 @@
 #pragma once
 
+#include <coshell/base/nonlinear_problem.h>
 #include <coshell/solvers/linear_solver.h>
 #include <coshell/solvers/newton.h>
-#include <coshell/solvers/nonlinear_problem.h>
 
 #include <deal.II/base/parameter_handler.h>
 
@@ -65,7 +65,7 @@ namespace coshell::solvers
     /// the initial ones; the initial acceleration is made consistent)
     /// from 'start' to 'end'. 'first_step' numbers the steps. Returns the
     /// number of steps taken. Throws NewtonFailure.
-    unsigned int run(EvolutionProblem        &problem,
+    unsigned int run(base::EvolutionProblem  &problem,
                      LinearSolver            &linear_solver,
                      const NewtonParameters  &newton,
                      double                   start,
@@ -101,10 +101,11 @@ namespace coshell::solvers
     unsigned int max_step_cuts_       = 12;
     unsigned int easy_iterations_     = 4;
     double       growth_factor_       = 1.5;
+    double       cut_factor_          = 0.5;
     double       progress_interval_   = 5;
     double       energy_growth_limit_ = 0;
 
-    void initial_acceleration(EvolutionProblem &problem,
-                              LinearSolver     &linear_solver) const;
+    void initial_acceleration(base::EvolutionProblem &problem,
+                              LinearSolver           &linear_solver) const;
   };
 } // namespace coshell::solvers

@@ -23,8 +23,6 @@ namespace coshell::solvers
     void factorize(const dealii::SparseMatrix<double> &matrix);
     void solve(dealii::Vector<double>       &x,
                const dealii::Vector<double> &b) const;
-    /// Symbolic analyses done so far (one per distinct pattern).
-    unsigned int n_symbolic_analyses() const;
     /// True once factorize() succeeded on a matrix of this size.
     bool has_factors_of_size(unsigned int n_rows) const;
     /// x = (L U)^-1 b with the factors of the last factorized matrix and no

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-namespace coshell::io
+namespace coshell::base
 {
   /// Significant digits of every number in a CSV result: enough to read
   /// back the double that was written. Fewer turn a round-off difference
@@ -54,4 +54,4 @@ namespace coshell::io
 
   /// "a,b,c" for the names.
   std::string join(const std::vector<std::string> &names);
-} // namespace coshell::io
+} // namespace coshell::base

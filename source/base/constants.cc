@@ -1,5 +1,5 @@
-#include <coshell/io/constants.h>
-#include <coshell/io/expressions.h>
+#include <coshell/base/constants.h>
+#include <coshell/base/expressions.h>
 
 #include <deal.II/base/numbers.h>
 #include <deal.II/base/utilities.h>
@@ -15,7 +15,7 @@
 #include <sstream>
 #include <stdexcept>
 
-namespace coshell::io
+namespace coshell::base
 {
   using namespace dealii;
 
@@ -249,4 +249,4 @@ namespace coshell::io
   {
     return scene_constants();
   }
-} // namespace coshell::io
+} // namespace coshell::base

@@ -6,7 +6,7 @@
 
 #include <functional>
 
-namespace coshell::solvers
+namespace coshell::base
 {
   /// Starts MPI unless it is running already. coshell starts MPI only when
   /// something needs it (a Trilinos solver, or a launch by mpirun):
@@ -72,4 +72,4 @@ namespace coshell::solvers
     /// OpenBLAS's thread count when made (0: not serial, or no OpenBLAS).
     int threads_before_;
   };
-} // namespace coshell::solvers
+} // namespace coshell::base

@@ -12,7 +12,7 @@
 #include <memory>
 #include <ostream>
 
-namespace coshell::solvers
+namespace coshell::driver
 {
   /// Small-displacement static analysis: K u = f with constraints.
   class LinearStatic
@@ -34,7 +34,7 @@ namespace coshell::solvers
     /// Factorizes and solves; returns the displacement/rotation vector.
     /// K is released once the solver holds its own copy (the Trilinos
     /// methods); the next assemble() allocates it again.
-    dealii::Vector<double> solve(LinearSolver &solver);
+    dealii::Vector<double> solve(solvers::LinearSolver &solver);
 
     unsigned int n_inactive_dofs() const;
 
@@ -56,4 +56,4 @@ namespace coshell::solvers
     template<typename Matrix>
     void regularize_inactive_dofs(Matrix &matrix, const dealii::IndexSet &rows);
   };
-} // namespace coshell::solvers
+} // namespace coshell::driver

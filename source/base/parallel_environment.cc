@@ -1,4 +1,4 @@
-#include <coshell/solvers/parallel_environment.h>
+#include <coshell/base/parallel_environment.h>
 
 #include <deal.II/base/multithread_info.h>
 
@@ -10,7 +10,7 @@
 #include <exception>
 #include <vector>
 
-namespace coshell::solvers
+namespace coshell::base
 {
   using namespace dealii;
 
@@ -186,7 +186,7 @@ namespace coshell::solvers
     // the dynamic adjustment that caps a region at the idle cores. The
     // parallel work of a factorization is in the BLAS, so no OpenMP
     // region may be active (max-active-levels 0), whatever the thread
-    // count (a large plate solves as fast: doc/performance.md). It is a
+    // count (a large plate solves as fast: doc/performance/scaling.md). It is a
     // setting of the calling thread (GCC 12), the one the solvers run on.
     void limit_openmp_regions()
     {
@@ -267,4 +267,4 @@ namespace coshell::solvers
   {
     return MultithreadInfo::n_threads();
   }
-} // namespace coshell::solvers
+} // namespace coshell::base

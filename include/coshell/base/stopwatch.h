@@ -2,8 +2,17 @@
 
 #include <chrono>
 
-namespace coshell::solvers
+namespace coshell::base
 {
+  /// Wall-clock seconds from 'start' to now.
+  inline double
+  seconds_since(const std::chrono::steady_clock::time_point &start)
+  {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() -
+                                         start)
+        .count();
+  }
+
   /// Adds the wall-clock seconds of its scope to a counter (the timings
   /// summary.json reports: linear solver, contact detection, ...).
   class Stopwatch
@@ -26,4 +35,4 @@ namespace coshell::solvers
     double                               &total_;
     std::chrono::steady_clock::time_point start_;
   };
-} // namespace coshell::solvers
+} // namespace coshell::base

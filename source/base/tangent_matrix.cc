@@ -1,8 +1,8 @@
-#include <coshell/solvers/tangent_matrix.h>
+#include <coshell/base/tangent_matrix.h>
 
 #include <stdexcept>
 
-namespace coshell::solvers
+namespace coshell::base
 {
   using namespace dealii;
 
@@ -186,4 +186,4 @@ namespace coshell::solvers
     if (rows_.is_element(row))
       matrix_.add(row, column, value);
   }
-} // namespace coshell::solvers
+} // namespace coshell::base

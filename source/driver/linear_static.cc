@@ -1,11 +1,11 @@
+#include <coshell/base/parallel_environment.h>
+#include <coshell/driver/linear_static.h>
 #include <coshell/model/rigid_body_modes.h>
-#include <coshell/solvers/linear_static.h>
-#include <coshell/solvers/parallel_environment.h>
 
 #include <cmath>
 #include <stdexcept>
 
-namespace coshell::solvers
+namespace coshell::driver
 {
   using namespace dealii;
 
@@ -76,8 +76,8 @@ namespace coshell::solvers
     // unstiffened rows, then per rank the first unstiffened row that carries
     // a load + 1], summed over the ranks (each row lives on one rank), so
     // that every rank stops with the same message.
-    Vector<double> totals(3 + n_ranks());
-    double        &loaded_row = totals[3 + this_rank()];
+    Vector<double> totals(3 + base::n_ranks());
+    double        &loaded_row = totals[3 + base::this_rank()];
     for (const auto i : rows)
       if (const double diagonal = matrix.diag_element(i); diagonal != 0)
       {
@@ -90,8 +90,8 @@ namespace coshell::solvers
         if (load_[i] != 0 && loaded_row == 0)
           loaded_row = i + 1.0;
       }
-    sum_over_ranks(totals);
-    for (unsigned int rank = 0; rank < n_ranks(); ++rank)
+    base::sum_over_ranks(totals);
+    for (unsigned int rank = 0; rank < base::n_ranks(); ++rank)
       if (const double row = totals[3 + rank]; row != 0)
         throw std::runtime_error(
             "a load acts on DoF " + std::to_string(static_cast<long>(row) - 1) +
@@ -105,7 +105,7 @@ namespace coshell::solvers
           matrix.set(i, i, typical);
   }
 
-  Vector<double> LinearStatic::solve(LinearSolver &solver)
+  Vector<double> LinearStatic::solve(solvers::LinearSolver &solver)
   {
     if (!stiffness_allocated())
       throw std::logic_error("LinearStatic::solve() needs assemble() first");
@@ -145,4 +145,4 @@ namespace coshell::solvers
   {
     return n_inactive_dofs_;
   }
-} // namespace coshell::solvers
+} // namespace coshell::driver

@@ -1,6 +1,6 @@
 #pragma once
 
-#include <coshell/io/constants.h>
+#include <coshell/base/constants.h>
 
 #include <deal.II/base/function_parser.h>
 #include <deal.II/base/numbers.h>
@@ -14,7 +14,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace coshell::io
+namespace coshell::base
 {
   /// The value of 'text' if it is exactly one number (blanks around it
   /// allowed), else nothing.
@@ -66,4 +66,4 @@ namespace coshell::io
     }
     return function;
   }
-} // namespace coshell::io
+} // namespace coshell::base

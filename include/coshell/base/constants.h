@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-namespace coshell::io
+namespace coshell::base
 {
   /// The named constants of a scene (prm subsection "Constants"), usable in
   /// every expression of the prm (motions, thickness, density, stage load
@@ -52,4 +52,4 @@ namespace coshell::io
 
   /// The constants every expression sees (pi and those of the scene).
   const std::map<std::string, double> &expression_constants();
-} // namespace coshell::io
+} // namespace coshell::base

@@ -1,12 +1,12 @@
-#include <coshell/io/csv_file.h>
-#include <coshell/solvers/parallel_environment.h>
+#include <coshell/base/csv_file.h>
+#include <coshell/base/parallel_environment.h>
 
 #include <algorithm>
 #include <filesystem>
 #include <iomanip>
 #include <stdexcept>
 
-namespace coshell::io
+namespace coshell::base
 {
   std::string join(const std::vector<std::string> &names)
   {
@@ -22,7 +22,7 @@ namespace coshell::io
   {
     header_ = join(columns);
     // Under mpirun rank 0 writes; the stream stays closed elsewhere.
-    if (!solvers::writes_output())
+    if (!base::writes_output())
       return;
     const auto directory = std::filesystem::path(path).parent_path();
     if (!directory.empty())
@@ -95,4 +95,4 @@ namespace coshell::io
   {
     return path_;
   }
-} // namespace coshell::io
+} // namespace coshell::base

@@ -11,7 +11,7 @@
 #include <utility>
 #include <vector>
 
-namespace coshell::solvers
+namespace coshell::base
 {
   /// The matrix a NonlinearProblem assembles its tangent into. On one rank
   /// it is a complete deal.II matrix. Under mpirun it is a Trilinos matrix
@@ -114,4 +114,4 @@ namespace coshell::solvers
     dealii::TrilinosWrappers::SparseMatrix &matrix_;
     const dealii::IndexSet                 &rows_;
   };
-} // namespace coshell::solvers
+} // namespace coshell::base

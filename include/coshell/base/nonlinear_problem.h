@@ -1,13 +1,13 @@
 #pragma once
 
-#include <coshell/solvers/tangent_matrix.h>
+#include <coshell/base/tangent_matrix.h>
 
 #include <deal.II/lac/sparsity_pattern.h>
 #include <deal.II/lac/vector.h>
 
 #include <string>
 
-namespace coshell::solvers
+namespace coshell::base
 {
   /// What a Newton solver needs of a nonlinear system r(x) = 0 whose
   /// unknowns may live on a manifold (rotations): residual and tangent at
@@ -127,9 +127,9 @@ namespace coshell::solvers
       return "";
     }
   };
-} // namespace coshell::solvers
+} // namespace coshell::base
 
-namespace coshell::solvers
+namespace coshell::base
 {
   /// A NonlinearProblem that evolves: along a load path (statics) or in
   /// time (dynamics). Path following and time integrators drive it through
@@ -178,4 +178,4 @@ namespace coshell::solvers
     /// 'mass' comes from reinit_tangent() (distributed like the tangent).
     virtual void mass_matrix(TangentMatrix &mass) = 0;
   };
-} // namespace coshell::solvers
+} // namespace coshell::base

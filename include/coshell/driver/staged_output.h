@@ -1,11 +1,12 @@
 #pragma once
 
-// The outputs a staged run writes as it goes, shared by the scene's
-// stage loop (scene.cc) and its checkpointing (scene_checkpoint.cc).
+// The outputs a staged run writes as it goes and the energy bookkeeping
+// they share, used by the scene's stage loop (scene.cc), its
+// postprocessors (postprocessors.cc) and its checkpointing
+// (scene_checkpoint.cc).
 
+#include <coshell/base/csv_file.h>
 #include <coshell/contact/contact.h>
-#include <coshell/driver/scene.h>
-#include <coshell/io/csv_file.h>
 
 #include <deal.II/lac/vector.h>
 
@@ -18,19 +19,20 @@ namespace coshell::driver
 {
   using dealii::Vector;
 
-  struct Scene::StagedOutput
+  /// The files and running totals of one staged run.
+  struct StagedOutput
   {
-    StagedOutput(io::CsvFile &&curve, io::CsvFile &&history)
+    StagedOutput(base::CsvFile &&curve, base::CsvFile &&history)
         : curve(std::move(curve)), history(std::move(history))
     {
     }
 
-    io::CsvFile                curve, history;
-    std::optional<io::CsvFile> time_history, contact_forces;
+    base::CsvFile                curve, history;
+    std::optional<base::CsvFile> time_history, contact_forces;
     /// Each Contact/Obstacle k/Force file: the obstacle's index in
     /// Contact::obstacles() (the subsections with a mesh, in order) and
     /// its file.
-    std::vector<std::pair<unsigned int, io::CsvFile>> obstacle_force_files;
+    std::vector<std::pair<unsigned int, base::CsvFile>> obstacle_force_files;
     /// The contact of the run (nullptr when Contact is off), and the
     /// extremes of its gap over every iterate of the run.
     contact::Contact *contact      = nullptr;
