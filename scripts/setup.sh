@@ -6,8 +6,10 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 bash scripts/install-dependencies.sh --with-peers
-# ccache keys paths relative to the tree, so another clone reuses the cache.
-export CCACHE_BASEDIR="$PWD"
+# ccache keys paths relative to the tree and leaves the build directory
+# out of its keys (deal.II's flags ask for debug information), so another
+# clone reuses the cache.
+export CCACHE_BASEDIR="$PWD" CCACHE_NOHASHDIR=true
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release \
   -DCMAKE_CXX_COMPILER_LAUNCHER=ccache
 cmake --build build -j "$(nproc)"
