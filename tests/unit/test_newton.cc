@@ -3,6 +3,8 @@
 
 #include <coshell/solvers/newton.h>
 
+#include "solver_test_utilities.h"
+
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 
 #include <gtest/gtest.h>
@@ -13,6 +15,8 @@
 
 namespace
 {
+  using coshell::solvers::testing::hardening_root;
+  using coshell::solvers::testing::umfpack;
   using namespace dealii;
   using coshell::base::NonlinearProblem;
   using coshell::base::TangentMatrix;
@@ -160,29 +164,6 @@ namespace
     bool                convex_ = false;
   };
 
-  LinearSolver &umfpack()
-  {
-    static LinearSolver solver;
-    ParameterHandler    prm;
-    LinearSolver::declare_parameters(prm);
-    prm.enter_subsection("Linear solver");
-    prm.set("Method", "umfpack");
-    prm.leave_subsection();
-    solver.parse_parameters(prm);
-    return solver;
-  }
-
-  double cubic_root(double load, double c)
-  {
-    // x + c x^3 = load by bisection (independent of Newton).
-    double low = -std::abs(load) - 1, high = std::abs(load) + 1;
-    for (int i = 0; i < 200; ++i)
-    {
-      const double mid                                = 0.5 * (low + high);
-      (mid + c * mid * mid * mid < load ? low : high) = mid;
-    }
-    return 0.5 * (low + high);
-  }
 } // namespace
 
 TEST(Newton, SolvesUncoupledCubicsToTheBisectionRoot)
@@ -194,8 +175,8 @@ TEST(Newton, SolvesUncoupledCubicsToTheBisectionRoot)
   const unsigned int     iterations =
       newton.solve(problem, [&](const NewtonIteration &record)
                    { residuals.push_back(record.relative_residual); });
-  EXPECT_NEAR(problem.x()[0], cubic_root(2.0, 0.5), 1e-9);
-  EXPECT_NEAR(problem.x()[1], cubic_root(-5.0, 0.5), 1e-9);
+  EXPECT_NEAR(problem.x()[0], hardening_root(2.0, 0.5), 1e-9);
+  EXPECT_NEAR(problem.x()[1], hardening_root(-5.0, 0.5), 1e-9);
   EXPECT_LE(iterations, 8u);
   // Quadratic convergence: r_{k+1} <= C r_k^2 in the last steps.
   ASSERT_GE(residuals.size(), 3u);
@@ -214,8 +195,8 @@ TEST(Newton, AssemblesNoTangentForTheEvaluationThatEndsTheSolve)
   const unsigned int iterations = newton.solve(problem);
   EXPECT_EQ(problem.tangent_evaluations, iterations);
   EXPECT_GT(problem.evaluations, problem.tangent_evaluations);
-  EXPECT_NEAR(problem.x()[0], cubic_root(2.0, 0.5), 1e-9);
-  EXPECT_NEAR(problem.x()[1], cubic_root(-5.0, 0.5), 1e-9);
+  EXPECT_NEAR(problem.x()[0], hardening_root(2.0, 0.5), 1e-9);
+  EXPECT_NEAR(problem.x()[1], hardening_root(-5.0, 0.5), 1e-9);
 }
 
 TEST(Newton, ConvergesWhenTheExternalLoadIsZero)
@@ -273,7 +254,7 @@ TEST(Newton, LineSearchLeavesTheIterateUnchangedBetweenTrials)
   parameters.residual_tolerance = 1e-12;
   Newton newton(parameters, umfpack());
   newton.solve(problem);
-  EXPECT_NEAR(problem.x()[0], cubic_root(50.0, 1.0), 1e-9);
+  EXPECT_NEAR(problem.x()[0], hardening_root(50.0, 1.0), 1e-9);
 }
 
 TEST(Newton, LineSearchKeepsTheEvaluationOfAnAcceptedWholeStep)

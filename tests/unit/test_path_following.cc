@@ -11,6 +11,8 @@
 
 #include <coshell/solvers/path_following.h>
 
+#include "solver_test_utilities.h"
+
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 
 #include <gtest/gtest.h>
@@ -26,6 +28,8 @@
 
 namespace
 {
+  using coshell::solvers::testing::hardening_root;
+  using coshell::solvers::testing::umfpack;
   using namespace dealii;
   using coshell::base::EvolutionProblem;
   using coshell::base::TangentMatrix;
@@ -161,30 +165,6 @@ namespace
   {
     return Springs({1.0, 1.0}, {snap_force, [](double y) { return 4 * y; }},
                    {snap_stiffness, [](double) { return 4.0; }});
-  }
-
-  /// The root of x + c x^3 = load by bisection (independent of Newton).
-  double hardening_root(double load, double c)
-  {
-    double low = -std::abs(load) - 1, high = std::abs(load) + 1;
-    for (int i = 0; i < 200; ++i)
-    {
-      const double mid                                = 0.5 * (low + high);
-      (mid + c * mid * mid * mid < load ? low : high) = mid;
-    }
-    return 0.5 * (low + high);
-  }
-
-  LinearSolver &umfpack()
-  {
-    static LinearSolver solver;
-    ParameterHandler    prm;
-    LinearSolver::declare_parameters(prm);
-    prm.enter_subsection("Linear solver");
-    prm.set("Method", "umfpack");
-    prm.leave_subsection();
-    solver.parse_parameters(prm);
-    return solver;
   }
 
   PathFollowing path_following(const std::string &method,

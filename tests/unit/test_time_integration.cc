@@ -10,6 +10,8 @@
 
 #include <coshell/solvers/time_integration.h>
 
+#include "solver_test_utilities.h"
+
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/lapack_full_matrix.h>
@@ -25,6 +27,7 @@
 
 namespace
 {
+  using coshell::solvers::testing::umfpack;
   using namespace dealii;
   using coshell::base::EvolutionProblem;
   using coshell::base::TangentMatrix;
@@ -188,18 +191,6 @@ namespace
   MassSpring oscillator(double omega)
   {
     return MassSpring(matrix(1, {1.0}), matrix(1, {omega * omega}));
-  }
-
-  LinearSolver &umfpack()
-  {
-    static LinearSolver solver;
-    ParameterHandler    prm;
-    LinearSolver::declare_parameters(prm);
-    prm.enter_subsection("Linear solver");
-    prm.set("Method", "umfpack");
-    prm.leave_subsection();
-    solver.parse_parameters(prm);
-    return solver;
   }
 
   std::string text(double x)
