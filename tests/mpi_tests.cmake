@@ -14,14 +14,19 @@ endif()
 set(CHECK_MPI ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_mpi_equals_serial.py)
 set(mpi_environment "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1")
 
-# coshell_mpi_test(NAME PRM METHOD [--set overrides...])
+# coshell_mpi_test(NAME PRM METHOD [--set overrides...]); METHOD "default"
+# sets no Linear solver/Method, so each run takes the default (auto).
 function(coshell_mpi_test name prm method)
+  set(method_setting --set "Linear solver/Method=${method}")
+  if(method STREQUAL "default")
+    set(method_setting)
+  endif()
   add_test(NAME mpi.${name}
     COMMAND ${COSHELL_PYTHON} ${CHECK_MPI} --coshell $<TARGET_FILE:coshell>
             --mpirun ${COSHELL_MPIRUN} --ranks 2 --tolerance 1e-10
             --prm ${COSHELL_PRM}/${prm}
             --output ${CMAKE_CURRENT_BINARY_DIR}/output/mpi.${name}
-            --set "Linear solver/Method=${method}"
+            ${method_setting}
             --set "Output/Vertex table=true" ${ARGN})
   set_tests_properties(mpi.${name} PROPERTIES LABELS mpi
                        ENVIRONMENT "${mpi_environment}")
@@ -30,6 +35,10 @@ endfunction()
 # Linear statics, refinement studies of 4 levels (64 .. 4096 triangles).
 coshell_mpi_test(clamped_square_mumps plates/clamped_square_pressure.prm
                  amesos-mumps)
+# The default method, auto: CHOLMOD serially, MUMPS on the two ranks.
+coshell_mpi_test(clamped_square_default_solver
+                 plates/clamped_square_pressure.prm default
+                 --expect-solvers cholmod amesos-mumps)
 coshell_mpi_test(scordelis_lo_mumps obstacle_course/scordelis_lo_roof.prm
                  amesos-mumps)
 # Three ranks (uneven parts, oversubscribed on two cores) and HDF5/XDMF
@@ -128,40 +137,49 @@ coshell_mpi_test(iol_fold_mumps iol/injection.prm amesos-mumps
                  --set "Nonlinear solver/Tangent=consistent"
                  --iterate-tolerance 1e-8)
 
-# coshell_mpi_bad_input_test(NAME PATTERN RANKS coshell arguments...): the
-# run under mpirun must stop with a message matching PATTERN.
+# coshell_mpi_bad_input_test(NAME PATTERN RANKS [ONCE] coshell arguments...):
+# the run under mpirun must stop with a message matching PATTERN; with ONCE
+# (an error every rank meets alike) one line of stderr only must match it.
 function(coshell_mpi_bad_input_test name pattern ranks)
+  cmake_parse_arguments(PARSE_ARGV 3 arg "ONCE" "" "")
+  set(once)
+  if(arg_ONCE)
+    set(once --once)
+  endif()
   set(output ${CMAKE_CURRENT_BINARY_DIR}/output/bad_input.${name})
   add_test(NAME bad_input.${name}
     COMMAND ${COSHELL_PYTHON} ${COSHELL_EXPECT_FAILURE} --pattern ${pattern}
-            --output ${output}
+            --output ${output} ${once}
             -- ${COSHELL_MPIRUN} --oversubscribe -np ${ranks}
-            $<TARGET_FILE:coshell> ${ARGN} --output ${output})
+            $<TARGET_FILE:coshell> ${arg_UNPARSED_ARGUMENTS} --output ${output})
   set_tests_properties(bad_input.${name} PROPERTIES LABELS "bad_input;mpi"
                        ENVIRONMENT "${mpi_environment}")
 endfunction()
 
-# A solver that runs on one rank only stops with a message naming the
-# parameter and the methods that do run distributed; so do what runs on one
-# rank only, and a mesh too small for the ranks.
+# A solver that runs on one rank only (asked for by name; the default,
+# auto, takes MUMPS) stops with a message naming the parameter and the
+# methods that do run distributed; so do what runs on one rank only, and a
+# mesh too small for the ranks. Every rank meets these alike, and the
+# message is printed once.
 coshell_mpi_bad_input_test(mpi_serial_solver
-  "Linear solver/Method = cholmod runs on one rank.*amesos-mumps" 2
-  ${COSHELL_PRM}/plates/clamped_square_pressure.prm)
+  "Linear solver/Method = cholmod runs on one rank.*amesos-mumps" 2 ONCE
+  ${COSHELL_PRM}/plates/clamped_square_pressure.prm
+  --set "Linear solver/Method=cholmod")
 coshell_mpi_bad_input_test(mpi_modes "Analysis/Type = modes runs on one rank" 2
-  ${COSHELL_PRM}/dynamics/cantilever_plate_modes.prm
+  ONCE ${COSHELL_PRM}/dynamics/cantilever_plate_modes.prm
   --set "Linear solver/Method=amesos-mumps")
 coshell_mpi_bad_input_test(mpi_interactive "--interactive runs on one rank" 2
-  ${COSHELL_PRM}/dynamics/free_flying_plate.prm --interactive
+  ONCE ${COSHELL_PRM}/dynamics/free_flying_plate.prm --interactive
   --set "Linear solver/Method=amesos-mumps")
 coshell_mpi_bad_input_test(mpi_mesh_too_small
-  "the mesh has 4 triangles, too few for 3 MPI ranks" 3
+  "the mesh has 4 triangles, too few for 3 MPI ranks" 3 ONCE
   ${COSHELL_PRM}/plates/clamped_square_pressure.prm
   --set "Mesh/Subdivisions x=1" --set "Mesh/Subdivisions y=1"
   --set "Mesh/Refinement levels=0" --set "Linear solver/Method=amesos-mumps")
 # The same refusal when the rows are distributed: every rank stops, the one
 # holding the DoF names it.
 coshell_mpi_bad_input_test(mpi_load_on_unstiffened_dof
-  "a load acts on DoF [0-9]+, which no element stiffens" 2
+  "a load acts on DoF [0-9]+, which no element stiffens" 2 ONCE
   ${COSHELL_PRM}/plates/clamped_square_pressure.prm
   --set "Element/Membrane element=off"
   --set "Loads/Point forces=0.5 0.5 0 : 1 0 0" --set "Mesh/Refinement levels=1"

@@ -174,6 +174,23 @@ namespace
   }
 } // namespace
 
+namespace
+{
+  /// Prints 'message' on standard error and returns 'status'. Under mpirun
+  /// a failure every rank shares is printed once, by rank 0; one on some
+  /// ranks only is printed by each of them, which then end the others
+  /// (they may wait in a collective for ever).
+  int report_failure(const std::string &message, int status)
+  {
+    const bool every_rank = coshell::base::every_rank_stops();
+    if (!every_rank || coshell::base::writes_output())
+      std::cerr << message << std::flush;
+    if (!every_rank)
+      coshell::base::abort_other_ranks(status);
+    return status;
+  }
+} // namespace
+
 int main(int argc, char **argv)
 {
   // Serial runs start MPI lazily (see ensure_mpi_initialized).
@@ -194,8 +211,8 @@ int main(int argc, char **argv)
   }
   catch (const std::exception &error)
   {
-    std::cerr << "coshell: " << error.what() << "\n\n" << usage;
-    return 2;
+    return report_failure(
+        "coshell: " + std::string(error.what()) + "\n\n" + usage, 2);
   }
 
   try
@@ -204,14 +221,12 @@ int main(int argc, char **argv)
   }
   catch (const coshell::driver::Interrupted &stop)
   {
-    std::cerr << "coshell: " << stop.what() << "\n";
-    return 3;
+    // The ranks agree on a signal, so all of them stop here.
+    return report_failure("coshell: " + std::string(stop.what()) + "\n", 3);
   }
   catch (const std::exception &error)
   {
-    std::cerr << "coshell: error: " << error.what() << "\n";
-    // An error on some ranks only would leave the others waiting.
-    coshell::base::abort_other_ranks(1);
-    return 1;
+    return report_failure("coshell: error: " + std::string(error.what()) + "\n",
+                          1);
   }
 }

@@ -6,8 +6,10 @@
 #include <mpi.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdlib>
 #include <exception>
+#include <thread>
 #include <vector>
 
 namespace coshell::base
@@ -16,12 +18,20 @@ namespace coshell::base
 
   namespace
   {
+    /// A duplicate of MPI_COMM_WORLD for the handshake of failing ranks
+    /// alone (every_rank_stops): its barrier can never be matched with a
+    /// collective of the code's own that another rank is waiting in.
+    MPI_Comm error_communicator = MPI_COMM_NULL;
+
     void finalize_mpi()
     {
       int finalized = 0;
       MPI_Finalized(&finalized);
-      if (!finalized)
-        MPI_Finalize();
+      if (finalized)
+        return;
+      if (error_communicator != MPI_COMM_NULL)
+        MPI_Comm_free(&error_communicator);
+      MPI_Finalize();
     }
   } // namespace
 
@@ -36,6 +46,9 @@ namespace coshell::base
     // before the exit handler runs.
     int provided = 0;
     MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided);
+    // Made now, while every rank is here: a duplicate is a collective,
+    // which a failing rank could not start alone.
+    MPI_Comm_dup(MPI_COMM_WORLD, &error_communicator);
     std::atexit(finalize_mpi);
   }
 
@@ -154,6 +167,34 @@ namespace coshell::base
     }
     if (failure)
       std::rethrow_exception(failure);
+  }
+
+  namespace
+  {
+    // How long a failing rank waits for the others to fail as well. The
+    // ranks run the same steps on replicated data, so a failure they share
+    // (a bad parameter, a solve that did not converge) reaches every rank
+    // between the same two collectives, close together in time; the margin
+    // is for a loaded or oversubscribed machine. A rank whose failure is
+    // its own pays this wait once, before it ends the run.
+    constexpr double stop_wait_seconds = 5;
+  } // namespace
+
+  bool every_rank_stops()
+  {
+    if (!distributed())
+      return true;
+    if (error_communicator == MPI_COMM_NULL) // MPI started by someone else
+      return false;
+    MPI_Request request;
+    MPI_Ibarrier(error_communicator, &request);
+    const auto give_up = std::chrono::steady_clock::now() +
+                         std::chrono::duration<double>(stop_wait_seconds);
+    int arrived = 0;
+    while (MPI_Test(&request, &arrived, MPI_STATUS_IGNORE) == MPI_SUCCESS &&
+           !arrived && std::chrono::steady_clock::now() < give_up)
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    return arrived != 0;
   }
 
   void abort_other_ranks(int status)

@@ -142,6 +142,16 @@ namespace coshell::solvers
       copy.compress(VectorOperation::insert);
       return copy;
     }
+
+    /// The method "auto" stands for: the fastest direct solver that runs
+    /// with this many ranks. MPI is running by now when mpirun started
+    /// the process (main() starts it first), so distributed() is valid.
+    std::string resolved_method(const std::string &method)
+    {
+      if (method != "auto")
+        return method;
+      return base::distributed() ? "amesos-mumps" : "cholmod";
+    }
   } // namespace
 
   LinearSolver::LinearSolver() : backend_(std::make_unique<Backend>()) {}
@@ -152,10 +162,12 @@ namespace coshell::solvers
   {
     prm.enter_subsection("Linear solver");
     prm.declare_entry(
-        "Method", "cholmod",
+        "Method", "auto",
         Patterns::Selection(
-            "cholmod|umfpack|amesos-klu|amesos-mumps|cg-amg|gmres-amg"),
+            "auto|cholmod|umfpack|amesos-klu|amesos-mumps|cg-amg|gmres-amg"),
         "Selects the linear solver. "
+        "auto: cholmod on one rank, amesos-mumps under mpirun on several "
+        "ranks (summary.json names the method used); "
         "cholmod: SuiteSparse supernodal Cholesky, analysed "
         "once per sparsity pattern (symmetric positive "
         "definite systems; non-symmetric ones, such as the "
@@ -169,9 +181,10 @@ namespace coshell::solvers
         "multigrid (see the AMG entries; slow on thin shells "
         "without the rigid-body near-null space); "
         "gmres-amg: GMRES with the same preconditioner, for "
-        "non-symmetric systems. Under mpirun only the Trilinos "
-        "methods run (distributed matrix, one block of rows per "
-        "rank); amesos-mumps is the distributed direct solver.");
+        "non-symmetric systems. Under mpirun only auto and the "
+        "Trilinos methods run (distributed matrix, one block of rows "
+        "per rank); amesos-mumps, which auto takes there, is the "
+        "distributed direct solver.");
     prm.declare_entry("Tolerance", "1e-10", Patterns::Double(0),
                       "Relative residual tolerance of iterative methods "
                       "(|r| <= tol |b|). Unit: dimensionless.");
@@ -217,7 +230,7 @@ namespace coshell::solvers
   void LinearSolver::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Linear solver");
-    method_         = prm.get("Method");
+    method_         = resolved_method(prm.get("Method"));
     tolerance_      = prm.get_double("Tolerance");
     max_iterations_ = prm.get_integer("Maximum iterations");
     rigid_body_near_null_space_ =

@@ -3,6 +3,7 @@
 
 check_mpi_equals_serial.py --coshell BIN --prm FILE --output DIR
                            [--set A/B=v ...] [--ranks 2] [--tolerance 1e-10]
+                           [--expect-solvers SERIAL PARALLEL]
 
 Runs the scene serially and with 'mpirun -np RANKS' (same overrides) and
 checks, relative to the size of each quantity in the serial run:
@@ -14,7 +15,9 @@ checks, relative to the size of each quantity in the serial run:
   (statics) and contact_forces.csv,
   row by row (a vector's component relative to the whole vector's size);
 and that the parallel run logged once, wrote one summary with mpi_ranks =
-RANKS and left no partial files.
+RANKS and left no partial files. With --expect-solvers, the two runs'
+summary.json name these linear solvers ("linear_solver": the method used,
+e.g. what Linear solver/Method = auto chose).
 
 With --restart-from-middle (give Output/Checkpoint interval with --set) the
 parallel run restarts from the serial run's middle checkpoint, and the
@@ -249,6 +252,9 @@ def main():
                         help="tolerance of the columns that are extremes "
                         "over all Newton iterates (%s); default: --tolerance"
                         % ", ".join(ITERATE_COLUMNS))
+    parser.add_argument("--expect-solvers", nargs=2,
+                        metavar=("SERIAL", "PARALLEL"),
+                        help="the linear_solver of each run's summary.json")
     args = parser.parse_args()
     overrides = []
     for assignment in args.set:
@@ -279,6 +285,8 @@ def main():
     scales = field_scales(serial, point_value_components(args.prm, args.set))
     compare_summaries(checks, serial, parallel, args.ranks, args.tolerance,
                       args.restart_from_middle, scales)
+    if args.expect_solvers:
+        check_solvers(checks, (serial, parallel), args.expect_solvers)
     # A refinement study writes each level into its own directory.
     for level in [""] + sorted(os.path.basename(d) for d in
                                glob.glob(os.path.join(serial, "level-*"))):
@@ -292,6 +300,15 @@ def main():
     if args.check_pvtu:
         check_pieces(checks, parallel, args.ranks)
     checks.exit()
+
+
+def check_solvers(checks, directories, expected):
+    """Each run's summary.json names the expected linear solver."""
+    for directory, method in zip(directories, expected):
+        with open(os.path.join(directory, "summary.json")) as f:
+            used = json.load(f).get("linear_solver")
+        checks(f"{os.path.basename(directory)}: linear_solver {used}, "
+               f"expected {method}", used == method)
 
 
 def check_pieces(checks, parallel, ranks):

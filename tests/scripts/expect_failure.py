@@ -7,9 +7,11 @@ that directory starts with an earlier run's summary.json and
 convergence.csv, which the failed run must remove: stale results that
 stayed would look like this run's. A command line coshell cannot read
 (exit status 2, the usage printed) runs nothing and touches no file:
-there they must stay as they were.
+there they must stay as they were. With --once exactly one line of
+stderr must match the pattern (an error that every rank of an mpirun
+shares is printed by one rank only).
 
-  expect_failure.py --pattern REGEX [--output DIR] -- command args...
+  expect_failure.py --pattern REGEX [--output DIR] [--once] -- command args...
 """
 import argparse
 import glob
@@ -26,6 +28,8 @@ def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--pattern", required=True)
     parser.add_argument("--output")
+    parser.add_argument("--once", action="store_true",
+                        help="the pattern matches stderr exactly once")
     parser.add_argument("command", nargs=argparse.REMAINDER)
     args = parser.parse_args()
     command = [c for c in args.command if c != "--"]
@@ -56,6 +60,12 @@ def main():
         problems.append("the process crashed instead of reporting the error")
     if not re.search(args.pattern, result.stderr, re.S):
         problems.append(f"stderr does not match /{args.pattern}/")
+    # Counted by line: a greedy .* across lines would join two copies.
+    lines = [line for line in result.stderr.splitlines()
+             if re.search(args.pattern, line)]
+    if args.once and len(lines) != 1:
+        problems.append(f"{len(lines)} lines of stderr match "
+                        f"/{args.pattern}/, not one")
     for name in stale if args.output else ():
         left = os.path.exists(os.path.join(args.output, name))
         if left and result.returncode != 2:

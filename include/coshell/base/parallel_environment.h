@@ -40,6 +40,12 @@ namespace coshell::base
   /// writing, which the others cannot open meanwhile). An exception is
   /// raised on its rank after the last turn, so no rank is left waiting.
   void one_rank_at_a_time(const std::function<void()> &work);
+  /// For a rank that stops on an error: waits a few seconds for every other
+  /// rank to call this too (a non-blocking barrier on a communicator of its
+  /// own). True when they all did (the same error everywhere, e.g. a bad
+  /// parameter), so one rank may report for all; false when some did not
+  /// (they may wait in a collective for ever). True on one rank.
+  bool every_rank_stops();
   /// Ends every rank of a distributed run after an error on some of them
   /// (the others may wait in a collective for ever); returns otherwise.
   void abort_other_ranks(int status);

@@ -106,6 +106,8 @@ namespace coshell::solvers
     /// the system is symmetric).
     void check_applicable(const std::string &why_not_symmetric) const;
 
+    /// The method in use: "auto" is resolved when the parameters are
+    /// parsed (cholmod on one rank, amesos-mumps on several).
     const std::string &method() const;
     /// Iterations of the last solve (1 for a direct solver).
     unsigned int last_iterations() const;
