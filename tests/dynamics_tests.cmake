@@ -177,6 +177,33 @@ foreach(case "generalized alpha:0:R3xSO3" "generalized alpha:0.5:R3xSO3"
     ${energy} ${momentum})
 endforeach()
 
+# Generalized alpha on R3xSO3 with little numerical damping is not
+# energy-stable for this tumbling at large steps. The default energy guard
+# is what keeps it bounded: without it the energy reaches 23 times its
+# start at rho_inf = 0.9 and 4 times at 1 (Energy growth limit = 0); with
+# it, steps that would more than double it are cut, and the slower gain
+# that remains (30 % and 12 % at most) stays below half the start.
+# Asserted: bounded, and the guard did reject steps.
+foreach(radius 0.9 1)
+  coshell_dynamics_test(
+    stability.free_flying_plate_100x_explicit_step.generalized_alpha_rho_${radius}_guarded
+    ${free_flying} ARGS ${large_steps}
+    --set "Time integration/Spectral radius=${radius}"
+    --no-energy-growth 0.5 --guard-rejections 1)
+endforeach()
+
+# The issue's tumbling plate, stiffened (E = 1e7, spin 1.1 rad/s, lowest
+# elastic frequency about 140 rad/s) at the scene's rho_inf = 1 on R3xSO3
+# and dt = 0.02 s, nothing set but the defaults: without the guard one
+# step at t = 13.37 s multiplies the energy by 143 (0.0946 to 13.5) and
+# the step size collapses to 1e-4 s. The default guard rejects that step
+# and the energy, which nothing works on, stays at its start within 1 %
+# (measured: 0.08 %) over 14 s.
+coshell_dynamics_test(dynamics.free_flying_plate.stiff_rho_1_default_guard
+  ${free_flying} ARGS --set "Material/Young's modulus=1e7"
+  --set "Time integration/End time=14"
+  --drift total_energy 0.01 initial --guard-rejections 1)
+
 # The linearized implicit Euler realizes a prescribed motion: the strip's
 # end turned by 2 pi t in dynamic steps of 5 ms reaches -2 pi x 0.02 =
 # -0.1256637 rad at t = 0.02 s (the constraint, exactly). Its increment is
@@ -193,12 +220,14 @@ coshell_dynamics_test(stages.strip_roll_up_linearized_prescribed_rotation
 # a prescribed end rotation springs open in a damped dynamic stage and
 # comes to rest flat. Nothing works on it after the release, so its energy
 # may only fall (1e-9 for round-off; measured: it falls at every step).
-# Without the scene's energy guard one step converges to a spurious state
-# at t = 1.0989 s and the energy jumps from 158 to 13 139, and the run
-# takes about ten times as many steps (doc/validation.md).
+# Without the energy guard one step converges to a spurious state at
+# t = 1.0989 s and the energy jumps from 158 to 13 139, and the run takes
+# about ten times as many steps (doc/validation.md). The scene sets no
+# guard: the default one must catch that step (at least one rejection).
 coshell_dynamics_test(stages.strip_roll_up_then_release
   dynamics/strip_roll_up.prm ARGS --stage 2
-  --final tip_u 0 1e-3 --final tip_w 0 1e-3 --no-energy-growth 1e-9)
+  --final tip_u 0 1e-3 --final tip_w 0 1e-3 --no-energy-growth 1e-9
+  --guard-rejections 1)
 
 # Bad input. ($<SEMICOLON> is ';' inside a test command.)
 set(vibration ${COSHELL_PRM}/${cantilever})
@@ -210,6 +239,13 @@ coshell_bad_input_test(negative_time_step "Time integration/Time step = -0.1 mus
   ${vibration} --set "Time integration/Time step=-0.1")
 coshell_bad_input_test(negative_energy_growth_limit "Time integration/Energy growth limit=-1'.*Double 0"
   ${vibration} --set "Time integration/Energy growth limit=-1")
+# A step the guard keeps rejecting ends the run once its cuts run out: the
+# message names the step's times and the energy jump, and no summary is
+# left (a limit of 1e-12 rejects the scheme's own energy error).
+coshell_bad_input_test(energy_guard_out_of_step_cuts
+  "time step from t = [0-9.]+ s to [0-9.]+ s failed after 2 step cuts: the energy guard rejects the step: the mechanical energy went from [0-9.]+ to [0-9.]+"
+  ${COSHELL_PRM}/${free_flying} --set "Time integration/Energy growth limit=1e-12"
+  --set "Time integration/Maximum step cuts=2")
 coshell_bad_input_test(minimum_above_maximum_step "Minimum time step = 0.1 exceeds Maximum time step = 0.01"
   ${vibration} --set "Time integration/Minimum time step=0.1"
   --set "Time integration/Maximum time step=0.01")
@@ -230,9 +266,23 @@ foreach(mass consistent lumped)
          --value omega_3 21.43 0.015 --value omega_4 27.33 0.015
          --value omega_5 31.11 0.015)
 endforeach()
-coshell_bad_input_test(modes_of_a_free_plate_without_shift "rigid-body motion.s. free"
-  ${COSHELL_PRM}/dynamics/cantilever_plate_modes.prm
-  --set "Boundary conditions/Conditions=")
+
+# Free-free modes: the square plate with no supports. Its six rigid-body
+# motions come first at omega near 0 (below 1e-3 of the lowest elastic
+# frequency; measured: 3.2e-4 rad/s), then Leissa (1969), section 4.4,
+# free square plate, nu = 0.3: lambda^2 = 13.47, 19.60, 24.27, 34.80,
+# 34.80, within 2 % at the finest level (32 x 32 crossed; measured: within
+# 0.06 %).
+set(rigid_frequencies)
+foreach(k 1 2 3 4 5 6)
+  list(APPEND rigid_frequencies --below omega_${k} 0.0135)
+endforeach()
+coshell_scene_test(modes.free_plate dynamics/free_plate_modes.prm
+  LABELS dynamics
+  ARGS --set ${no_vtu} ${rigid_frequencies}
+       --value omega_7 13.47 0.02 --value omega_8 19.60 0.02
+       --value omega_9 24.27 0.02 --value omega_10 34.80 0.02
+       --value omega_11 34.80 0.02)
 
 # Energy bookkeeping on the flapping plate under gravity (co-rotational,
 # rho_inf = 1): total energy - work of the loads + dissipated energy stays
@@ -297,8 +347,21 @@ add_test(NAME restart.strip_roll_up_then_release
           --output ${CMAKE_CURRENT_BINARY_DIR}/output/restart.strip_roll_up
           --end 0.25 --end-parameter "Stage 2/Duration" --interval 0.0625
           --tolerance 1e-12)
+# A restart with a smaller Maximum time step (0.001 s) than the step the
+# checkpoint carries (the scene's 0.02 s): every step after the restart,
+# the first included, respects the new limit, and the log says the carried
+# step was clipped. (Unchanged limits leave the restart bit for bit: the
+# tests above.)
+add_test(NAME restart.free_flying_plate.smaller_step_limit
+  COMMAND ${COSHELL_PYTHON}
+          ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_restart_step_limits.py
+          --coshell $<TARGET_FILE:coshell> --prm ${COSHELL_PRM}/${free_flying}
+          --output ${CMAKE_CURRENT_BINARY_DIR}/output/restart.free_flying_plate.smaller_step_limit
+          --set "Time integration/End time=0.5" --interval 0.25
+          --maximum 0.001)
 set_tests_properties(restart.free_flying_plate
   restart.free_flying_plate.thinned_history restart.strip_roll_up_then_release
+  restart.free_flying_plate.smaller_step_limit
   PROPERTIES LABELS dynamics)
 set_tests_properties(restart.free_flying_plate PROPERTIES
   FIXTURES_SETUP free_flying_checkpoint)

@@ -17,6 +17,7 @@
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
+#include <limits>
 #include <memory>
 #include <sstream>
 #include <stdexcept>
@@ -79,19 +80,44 @@ namespace coshell::driver
     return result;
   }
 
+  namespace
+  {
+    /// The shift that makes K - shift M of a shell with free rigid-body
+    /// motions positive definite: a millionth of the smallest ratio
+    /// K_ii / M_ii of a free DoF, a bound on the scale of the lowest
+    /// elastic omega^2 from the stiffest a single DoF can be. So small a
+    /// shift keeps the elastic modes apart in the shift-inverted spectrum
+    /// (Lanczos converges on them as without a shift); the factorization's
+    /// condition grows by the million, which a direct solver bears.
+    double free_body_shift(const SparseMatrix<double> &stiffness,
+                           const SparseMatrix<double> &mass)
+    {
+      double smallest = std::numeric_limits<double>::max();
+      for (unsigned int i = 0; i < stiffness.m(); ++i)
+        if (mass.diag_element(i) > 0 && stiffness.diag_element(i) > 0)
+          smallest = std::min(smallest,
+                              stiffness.diag_element(i) / mass.diag_element(i));
+      return -1e-6 * smallest;
+    }
+  } // namespace
+
   void ModalAnalysis::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Modal analysis");
     prm.declare_entry("Number of modes", "6", Patterns::Integer(1),
-                      "Analysis/Type = modes: how many of the lowest natural "
-                      "frequencies to compute. Unit: dimensionless (a "
-                      "count).");
+                      "Analysis/Type = modes: how many of the lowest elastic "
+                      "natural frequencies to compute. A shell whose "
+                      "supports leave rigid-body motions free (free-free) "
+                      "gets those too, as its first modes at omega near 0. "
+                      "Unit: dimensionless (a count).");
     prm.declare_entry("Shift", "0", Patterns::Double(),
                       "sigma of the shift-invert Lanczos iteration, in "
-                      "omega^2 units: the modes nearest it are found. A "
-                      "negative value lets an unsupported structure (with "
-                      "rigid-body modes) be analysed. Unit: 1/time^2 "
-                      "(1/s^2).");
+                      "omega^2 units: the modes nearest it are found. 0: "
+                      "automatic, 0 for a supported shell and, for one "
+                      "with free rigid-body motions, a small negative "
+                      "shift (a millionth of the smallest stiffness-to-"
+                      "mass ratio of a DoF) that makes K - sigma M "
+                      "definite. Unit: 1/time^2 (1/s^2).");
     prm.leave_subsection();
   }
 
@@ -119,8 +145,8 @@ namespace coshell::driver
     auto                            phase = std::chrono::steady_clock::now();
     const AffineConstraints<double> constraints =
         support_constraints(supports, model);
-    if (shift_ == 0)
-      model::check_supports(model, constraints);
+    const unsigned int n_rigid =
+        model::n_free_rigid_motions(model, constraints);
     model::ShellState                                 state(model, false);
     std::vector<std::unique_ptr<model::Contribution>> inertia;
     inertia.push_back(
@@ -140,23 +166,33 @@ namespace coshell::driver
     result.wall_time_s.assemble = base::seconds_since(phase);
 
     phase = std::chrono::steady_clock::now();
+    const double shift =
+        shift_ != 0 || n_rigid == 0 ? shift_ : free_body_shift(stiffness, mass);
+    if (n_rigid > 0 && shift <= 0)
+      log << "  " << n_rigid << " rigid-body motion(s) free: modes 1 to "
+          << n_rigid << " are rigid (omega near 0), shift " << shift
+          << " 1/s^2\n";
     std::vector<double>         eigenvalues;
     std::vector<Vector<double>> modes;
-    solvers::lowest_modes(stiffness, mass, linear_solver, shift_, n_modes_,
-                          eigenvalues, modes);
+    solvers::lowest_modes(stiffness, mass, linear_solver, shift,
+                          n_modes_ + n_rigid, eigenvalues, modes);
     result.wall_time_s.solve = base::seconds_since(phase);
 
     phase = std::chrono::steady_clock::now();
     std::ostringstream csv;
-    csv << "mode,frequency_hz,omega_rad_s\n"
+    csv << "mode,frequency_hz,omega_rad_s,rigid_body\n"
         << std::setprecision(base::csv_digits);
     for (unsigned int k = 0; k < modes.size(); ++k)
     {
       const double omega = std::sqrt(std::max(eigenvalues[k], 0.0));
-      csv << k + 1 << ',' << omega / (2 * numbers::PI) << ',' << omega << '\n';
+      // Below a shift at or under 0 the rigid modes come first.
+      const bool rigid = k < n_rigid && shift <= 0;
+      csv << k + 1 << ',' << omega / (2 * numbers::PI) << ',' << omega << ','
+          << rigid << '\n';
       result.qoi["omega_" + std::to_string(k + 1)] = omega;
       log << "  mode " << k + 1 << ": omega = " << omega
-          << " rad/s, f = " << omega / (2 * numbers::PI) << " Hz\n";
+          << " rad/s, f = " << omega / (2 * numbers::PI) << " Hz"
+          << (rigid ? " (rigid-body motion)" : "") << '\n';
       output.write(model, modes[k], model.resultants(modes[k]), directory,
                    "mode-" + std::to_string(k + 1), k + 1);
     }

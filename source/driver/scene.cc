@@ -721,6 +721,9 @@ namespace coshell::driver
         open_staged_outputs(quantities_, model, state, directory);
     if (has_dynamic_stage())
     {
+      if (const std::string risk = time_integration_.known_risk();
+          !risk.empty())
+        log << risk << '\n';
       open_time_history(out, quantities_, model, state, directory);
       model::Inertia(model, inertia_, time_integration_.se3())
           .set_initial_velocity(state);

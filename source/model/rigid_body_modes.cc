@@ -49,33 +49,54 @@ namespace coshell::model
     return modes;
   }
 
+  namespace
+  {
+    /// The rigid-body motions the constraints leave free: the null space
+    /// of G = A^T A, A having one row per constraint line, the amount by
+    /// which each of the six rigid modes violates that line. Returns the
+    /// free motions as columns of coefficients of the six modes.
+    FullMatrix<double>
+    free_motions(const ShellModel                &model,
+                 const AffineConstraints<double> &constraints)
+    {
+      const auto               modes = rigid_body_modes(model);
+      LAPACKFullMatrix<double> gram(6, 6);
+      for (const auto &line : constraints.get_lines())
+      {
+        std::array<double, 6> violation;
+        for (unsigned int k = 0; k < 6; ++k)
+        {
+          violation[k] = modes[k][line.index];
+          for (const auto &[column, weight] : line.entries)
+            violation[k] -= weight * modes[k][column];
+        }
+        for (unsigned int i = 0; i < 6; ++i)
+          for (unsigned int j = 0; j < 6; ++j)
+            gram(i, j) += violation[i] * violation[j];
+      }
+      const double       scale = std::max(1.0, gram.frobenius_norm());
+      Vector<double>     free_amounts;
+      FullMatrix<double> free_modes;
+      gram.compute_eigenvalues_symmetric(-1.0, 1e-10 * scale, 1e-14 * scale,
+                                         free_amounts, free_modes);
+      if (free_amounts.size() == 0)
+        return {};
+      return free_modes;
+    }
+  } // namespace
+
+  unsigned int
+  n_free_rigid_motions(const ShellModel                &model,
+                       const AffineConstraints<double> &constraints)
+  {
+    return free_motions(model, constraints).n();
+  }
+
   void check_supports(const ShellModel                &model,
                       const AffineConstraints<double> &constraints)
   {
-    const auto modes = rigid_body_modes(model);
-    // G = A^T A, A having one row per constraint line: the amount by which
-    // each rigid mode violates that line. Modes in the null space of G
-    // satisfy every constraint, so nothing stops them.
-    LAPACKFullMatrix<double> gram(6, 6);
-    for (const auto &line : constraints.get_lines())
-    {
-      std::array<double, 6> violation;
-      for (unsigned int k = 0; k < 6; ++k)
-      {
-        violation[k] = modes[k][line.index];
-        for (const auto &[column, weight] : line.entries)
-          violation[k] -= weight * modes[k][column];
-      }
-      for (unsigned int i = 0; i < 6; ++i)
-        for (unsigned int j = 0; j < 6; ++j)
-          gram(i, j) += violation[i] * violation[j];
-    }
-    const double       scale = std::max(1.0, gram.frobenius_norm());
-    Vector<double>     free_amounts;
-    FullMatrix<double> free_modes;
-    gram.compute_eigenvalues_symmetric(-1.0, 1e-10 * scale, 1e-14 * scale,
-                                       free_amounts, free_modes);
-    if (free_amounts.size() == 0)
+    const FullMatrix<double> free_modes = free_motions(model, constraints);
+    if (free_modes.n() == 0)
       return;
     static const char *names[6] = {"translation x", "translation y",
                                    "translation z", "rotation x",
@@ -90,7 +111,7 @@ namespace coshell::model
         plus = " + ";
       }
     throw std::runtime_error(
-        "the boundary conditions leave " + std::to_string(free_amounts.size()) +
+        "the boundary conditions leave " + std::to_string(free_modes.n()) +
         " rigid-body motion(s) free, e.g. " + motion.str() +
         ": the stiffness would be singular. Add supports in 'Boundary "
         "conditions/Conditions'.");

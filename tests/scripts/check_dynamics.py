@@ -23,6 +23,8 @@ references given here (only the rows of --stage N when given).
                                 within RTOL of the largest of |external_work|
                                 and total_energy (the energy bookkeeping)
      [--final QOI VALUE ATOL]   last value of QOI within ATOL of VALUE
+     [--guard-rejections MIN]   the energy guard rejected at least MIN steps
+                                (summary.json's energy_guard_rejections)
      [--report FILE]            append 'test,name,value' lines of what was
                                 measured (test = the output directory's name)
 Prints a line per check and 'N passed, M failed'; exits 1 on a failure.
@@ -72,6 +74,7 @@ def main():
     parser.add_argument("--final", nargs=3, action="append", default=[])
     parser.add_argument("--energy-balance", type=float)
     parser.add_argument("--no-energy-growth", type=float)
+    parser.add_argument("--guard-rejections", type=int)
     parser.add_argument("--report")
     parser.add_argument("--kept-factors-used", action="store_true",
                         help="some solve used kept factors (with Linear "
@@ -84,11 +87,16 @@ def main():
     t = floats(rows, "time")
     summary = read_summary(args.output)
     rejections = summary.get("energy_guard_rejections")
-    if rejections is not None:  # reported, not asserted: round-off decides
+    if rejections is not None and args.guard_rejections is None:
+        # reported, not asserted: round-off decides
         print(f"info the energy guard rejected {rejections} step(s)")
 
     checks = Checks()
     check = checks.that
+    if args.guard_rejections is not None:
+        check(rejections is not None and rejections >= args.guard_rejections,
+              f"the energy guard rejected {rejections} step(s), at least "
+              f"{args.guard_rejections} expected")
 
     for qoi, period, rtol in args.period:
         crossings = zero_crossings(t, floats(rows, qoi))

@@ -6,6 +6,8 @@ fails without running.
 
   run_and_check.py --coshell BIN --prm FILE --output DIR [--set A/B=v ...]
       [--value QOI REFERENCE RTOL]   |qoi - reference| <= rtol |reference|
+      [--below QOI BOUND]            qoi <= bound (a value whose reference
+                                     is 0, e.g. a rigid-body frequency)
       [--error-above QOI REFERENCE RTOL]  the method is known to miss the
                                      reference by more than rtol
       [--min-rate RATE]              last observed rate in convergence.csv
@@ -80,6 +82,18 @@ def check_values(summary, checks, within):
     return failures
 
 
+def check_below(summary, bounds):
+    failures = []
+    for name, bound in bounds:
+        value = summary["qoi"][name]
+        passed = value <= float(bound)
+        print(f"{name}: {value:.8g}, bound {bound} "
+              f"{'ok' if passed else 'FAIL'}")
+        if not passed:
+            failures.append(name)
+    return failures
+
+
 def check_rate(output, low, high):
     rows = read_rows(os.path.join(output, "convergence.csv"))
     print("convergence.csv:")
@@ -126,6 +140,8 @@ def main():
     add_scene_arguments(parser)
     parser.add_argument("--value", nargs=3, action="append", default=[],
                         metavar=("QOI", "REFERENCE", "RTOL"))
+    parser.add_argument("--below", nargs=2, action="append", default=[],
+                        metavar=("QOI", "BOUND"))
     parser.add_argument("--error-above", nargs=3, action="append", default=[],
                         metavar=("QOI", "REFERENCE", "RTOL"))
     parser.add_argument("--min-rate", type=float)
@@ -136,7 +152,7 @@ def main():
     parser.add_argument("--no-coarser-than", nargs=3, action="append",
                         default=[], metavar=("SETTING", "QOI", "REFERENCE"))
     args = parser.parse_args()
-    checks = (len(args.value) + len(args.error_above) +
+    checks = (len(args.value) + len(args.below) + len(args.error_above) +
               len(args.no_coarser_than) +
               sum(x is not None for x in (args.min_self_order, args.min_rate,
                                           args.max_rate, args.min_iterations,
@@ -145,12 +161,13 @@ def main():
         # A run that checks nothing would pass whatever coshell computed.
         print("0 passed, 1 failed")
         sys.exit("FAIL: run_and_check.py was given no check (--value, "
-                 "--error-above, --min-rate, --max-rate, --min-self-order, "
+                 "--below, --error-above, --min-rate, --max-rate, --min-self-order, "
                  "--no-coarser-than, --min-iterations or --max-iterations)")
 
     summary = run_coshell(args)
     failures = check_values(summary, args.value, True)
     failures += check_values(summary, args.error_above, False)
+    failures += check_below(summary, args.below)
     if args.min_rate is not None or args.max_rate is not None:
         failures += check_rate(args.output, args.min_rate, args.max_rate)
     if args.min_self_order is not None:

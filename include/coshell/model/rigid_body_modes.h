@@ -17,6 +17,12 @@ namespace coshell::model
   std::array<dealii::Vector<double>, 6>
   rigid_body_modes(const ShellModel &model);
 
+  /// How many independent rigid-body motions the constraints leave free
+  /// (0 to 6).
+  unsigned int
+  n_free_rigid_motions(const ShellModel                        &model,
+                       const dealii::AffineConstraints<double> &constraints);
+
   /// Throws std::runtime_error, naming the motion, when the constraints
   /// leave a rigid-body motion free (the stiffness would be singular).
   void check_supports(const ShellModel                        &model,

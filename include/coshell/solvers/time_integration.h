@@ -84,6 +84,10 @@ namespace coshell::solvers
     double end_time() const;
     /// Energy growth limit (dimensionless); 0: the guard is off.
     double energy_growth_limit() const;
+    /// A warning for a combination of settings known to accept steps that
+    /// create energy (generalized alpha on R3xSO3 at little damping with
+    /// the energy guard off); empty otherwise.
+    std::string known_risk() const;
     /// Lie group = SE3: body-frame translations (ShellState).
     bool se3() const;
 
@@ -91,6 +95,10 @@ namespace coshell::solvers
     struct Scheme;
 
   private:
+    /// A restart's first step size: the checkpoint's carried size clipped
+    /// to the Minimum/Maximum time step in force (logged when it is).
+    double resumed_step_size(double carried, std::ostream &log) const;
+
     std::string  method_              = "generalized alpha";
     bool         se3_                 = false;
     double       time_step_           = 1e-3;
@@ -103,7 +111,7 @@ namespace coshell::solvers
     double       growth_factor_       = 1.5;
     double       cut_factor_          = 0.5;
     double       progress_interval_   = 5;
-    double       energy_growth_limit_ = 0;
+    double       energy_growth_limit_ = 1;
 
     void initial_acceleration(base::EvolutionProblem &problem,
                               LinearSolver           &linear_solver) const;
