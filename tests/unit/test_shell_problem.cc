@@ -9,6 +9,10 @@
 // dp, and the exact tangent again after restore().
 //
 // The shell's mass (ShellModel::mass), which summary.json reports.
+//
+// The co-rotational internal force as a potential: the residual against
+// finite differences of the strain energy, the tangent against finite
+// differences of the residual.
 
 #include <coshell/mesh/mesh.h>
 #include <coshell/model/internal_force.h>
@@ -269,4 +273,83 @@ TEST(ShellModel, MassIntegratesDensityTimesALinearThickness)
   const model::ShellModel massless{surface, parameters,
                                    dealii::Tensor<1, 3>({0, 0, 1})};
   EXPECT_EQ(massless.mass(), 0);
+}
+
+// The co-rotational shell as a potential, seen through the whole problem
+// (ShellProblem with the internal force alone, the plate deformed by up to
+// 0.1 on every DoF, away from equilibrium): its residual is minus the
+// gradient of the strain energy, and its consistent tangent the
+// derivative of minus the residual, both against central differences
+// through the problem's own increment map (translations added, rotations
+// composed), which is the map Newton and a line search on the energy use.
+namespace
+{
+  /// A unit increment of DoF k, times 'size'.
+  dealii::Vector<double>
+  unit_increment(unsigned int n, unsigned int k, double size)
+  {
+    dealii::Vector<double> increment(n);
+    increment[k] = size;
+    return increment;
+  }
+
+  /// The strain energy after 'increment', then back to the saved state.
+  double energy_after(ElasticPlate &plate, const dealii::Vector<double> &inc)
+  {
+    plate.problem.apply_increment(inc);
+    const double energy =
+        plate.problem.find<model::InternalForce>()->strain_energy(plate.state);
+    plate.problem.restore();
+    return energy;
+  }
+
+  /// The residual after 'increment', then back to the saved state.
+  dealii::Vector<double> residual_after(ElasticPlate                 &plate,
+                                        const dealii::Vector<double> &inc)
+  {
+    plate.problem.apply_increment(inc);
+    dealii::Vector<double> residual(inc.size());
+    plate.problem.evaluate(residual, nullptr);
+    plate.problem.restore();
+    return residual;
+  }
+} // namespace
+
+TEST(InternalForce, ResidualIsMinusTheStrainEnergyGradient)
+{
+  ElasticPlate       plate(false);
+  const unsigned int n     = plate.model.n_dofs();
+  const double       step  = 1e-6;
+  const double       scale = plate.residual.linfty_norm();
+  ASSERT_GT(scale, 0);
+  for (unsigned int k = 0; k < n; ++k)
+  {
+    const double slope = (energy_after(plate, unit_increment(n, k, step)) -
+                          energy_after(plate, unit_increment(n, k, -step))) /
+                         (2 * step);
+    EXPECT_NEAR(slope, -plate.residual[k], 1e-6 * scale) << "DoF " << k;
+  }
+}
+
+TEST(InternalForce, ConsistentTangentIsTheDerivativeOfTheGradient)
+{
+  ElasticPlate                     plate(false);
+  const dealii::FullMatrix<double> tangent = plate.evaluate();
+  const unsigned int               n       = plate.model.n_dofs();
+  const double                     step    = 1e-6;
+  double                           largest = 0, mismatch = 0;
+  for (unsigned int k = 0; k < n; ++k)
+  {
+    dealii::Vector<double> column =
+        residual_after(plate, unit_increment(n, k, -step));
+    column -= residual_after(plate, unit_increment(n, k, step));
+    column /= 2 * step; // -dr/dx_k = K e_k
+    for (unsigned int i = 0; i < n; ++i)
+    {
+      largest  = std::max(largest, std::abs(tangent(i, k)));
+      mismatch = std::max(mismatch, std::abs(column[i] - tangent(i, k)));
+    }
+  }
+  ASSERT_GT(largest, 0);
+  EXPECT_LT(mismatch, 1e-6 * largest);
 }
