@@ -1,6 +1,8 @@
 // The contact contribution of a small plate over a rigid plane, assembled
 // as ShellProblem does: its tangent against central differences of its
-// forces, with the barrier and with friction, the equal and opposite
+// forces, with the barrier, the penalty and friction; without friction
+// its forces against central differences of the contact potential (the
+// barrier and the penalty are potentials); the equal and opposite
 // force on the obstacle and the slopes of its force and moment (what a
 // linearized step reports its load with); the same tangent check for
 // self contact.
@@ -251,18 +253,51 @@ namespace
     state.apply_increment(move);
   }
 
+  /// Frictionless contact is a potential: the contribution's forces at
+  /// time 1 against central differences of Contact::potential() over
+  /// every translation (force on the shell = -gradient).
+  void expect_forces_are_minus_potential_gradient(
+      const contact::Contact       &contact,
+      contact::ContactContribution &contribution,
+      model::ShellState            &state,
+      unsigned int                  n)
+  {
+    const Assembled at    = assemble(contribution, state, 1, n);
+    const double    scale = at.force.linfty_norm();
+    EXPECT_GT(scale, 0);
+    const double h = 1e-7;
+    for (unsigned int j = 0; j < n; ++j)
+    {
+      if (j % 6 >= 3)
+        continue;
+      const auto [plus, minus] = measured_both_ways(
+          contribution, state, n, j, h,
+          [&](const Assembled &) { return contact.potential(); });
+      EXPECT_NEAR(-(plus - minus) / (2 * h), at.force[j], 1e-5 * scale)
+          << "DoF " << j;
+    }
+  }
+
   /// Plate [0, 2]^2, h = 1 (offset 0.5), over the plane z = -0.55 (gap
   /// 0.05 < activation 0.1); after a converged state at t = 0 the plate is
-  /// moved sideways and down, and the tangent at t = 1 is checked.
-  void check_tangent(double friction)
+  /// moved sideways and down, and the tangent at t = 1 is checked. With
+  /// 'penalty' the law is the smoothed penalty (stiffness 10, smoothing
+  /// 0.005), and the plate sinks 0.06 further, into the plane.
+  void check_tangent(double friction, bool penalty = false)
   {
     UnitPlate                  plate;
     const auto                &surface    = plate.surface;
     const auto                &model      = plate.model;
     auto                      &state      = plate.state;
     contact::ContactParameters parameters = barrier_parameters();
-    parameters.stiction_velocity          = 0.01;
-    parameters.obstacles                  = {plane(-0.55, friction)};
+    if (penalty)
+    {
+      parameters.method            = contact::Method::penalty;
+      parameters.penalty_stiffness = 10;
+      parameters.penalty_smoothing = 0.005;
+    }
+    parameters.stiction_velocity = 0.01;
+    parameters.obstacles         = {plane(-0.55, friction)};
     contact::Contact contact(model, parameters);
     contact.follow_force_slopes();
     contact.check_initial_configuration(state, 0);
@@ -277,10 +312,13 @@ namespace
       const auto &dofs = model.vertex_dofs(v);
       move[dofs[0]]    = 0.004 + 0.001 * v;
       move[dofs[1]]    = -0.002 * (v % 3);
-      move[dofs[2]]    = -0.01 - 0.002 * (v % 2);
+      move[dofs[2]]    = -0.01 - 0.002 * (v % 2) - (penalty ? 0.06 : 0);
     }
     state.apply_increment(move);
     expect_tangent_matches_forces(contribution, state, n);
+    if (friction == 0)
+      expect_forces_are_minus_potential_gradient(contact, contribution, state,
+                                                 n);
     expect_force_slopes_match_loads(contact, contribution, state, n);
     const auto &load =
         expect_action_and_reaction(contact, contribution, plate, n);
@@ -296,6 +334,11 @@ TEST(ContactAssembly, BarrierTangentMatchesFiniteDifferences)
 TEST(ContactAssembly, FrictionTangentMatchesFiniteDifferences)
 {
   check_tangent(0.5);
+}
+
+TEST(ContactAssembly, PenaltyTangentMatchesFiniteDifferences)
+{
+  check_tangent(0, true);
 }
 
 namespace
