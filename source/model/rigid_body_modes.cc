@@ -80,7 +80,7 @@ namespace coshell::model
       gram.compute_eigenvalues_symmetric(-1.0, 1e-10 * scale, 1e-14 * scale,
                                          free_amounts, free_modes);
       if (free_amounts.size() == 0)
-        return {};
+        return FullMatrix<double>();
       return free_modes;
     }
   } // namespace
