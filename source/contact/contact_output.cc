@@ -174,6 +174,17 @@ namespace coshell::contact
     return true;
   }
 
+  bool ContactContribution::has_potential() const
+  {
+    return true;
+  }
+
+  double
+  ContactContribution::global_energy(const model::EvaluationPoint &) const
+  {
+    return contact_.potential() + contact_.step_friction_dissipation();
+  }
+
   bool ContactContribution::use_convex_tangent()
   {
     return contact_.use_projected_tangent();

@@ -14,6 +14,13 @@ namespace coshell::model
         follower_pressure_(finite_rotations ? loads.follower_pressure() : 0)
   {
     loads.assemble(model, dead_load_, log, finite_rotations);
+    if (finite_rotations)
+      for (unsigned int v = 0; v < model.surface().n_vertices(); ++v)
+        if (model.vertex_is_used(v))
+          for (unsigned int d = 0; d < 3; ++d)
+            moments_on_finite_rotations_ =
+                moments_on_finite_rotations_ ||
+                dead_load_[model.vertex_dofs(v)[rx + d]] != 0;
   }
 
   std::string ExternalLoads::name() const
@@ -59,6 +66,18 @@ namespace coshell::model
         for (unsigned int b = 0; b < 9; ++b)
           contribution.matrix(row, 6 * (b / 3) + b % 3) -= stiffness(a, b);
     }
+  }
+
+  bool ExternalLoads::has_potential() const
+  {
+    return follower_pressure_ == 0 && !moments_on_finite_rotations_;
+  }
+
+  double ExternalLoads::global_energy(const EvaluationPoint &point) const
+  {
+    // With finite rotations the rotation entries of the load are zero
+    // (has_potential()), so the product holds the translations' work.
+    return -point.load_factor * (dead_load_ * point.state.values());
   }
 
   void ExternalLoads::add_global(const EvaluationPoint &point,

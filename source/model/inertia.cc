@@ -560,6 +560,71 @@ namespace coshell::model
     }
   }
 
+  bool Inertia::has_potential() const
+  {
+    return !body_frame_translations_;
+  }
+
+  namespace
+  {
+    double dot(const std::array<double, element::shell_dofs> &a,
+               const std::array<double, element::shell_dofs> &b)
+    {
+      double sum = 0;
+      for (unsigned int i = 0; i < element::shell_dofs; ++i)
+        sum += a[i] * b[i];
+      return sum;
+    }
+
+    std::array<double, element::shell_dofs>
+    times(const FullMatrix<double>                      &matrix,
+          const std::array<double, element::shell_dofs> &x)
+    {
+      std::array<double, element::shell_dofs> product{};
+      for (unsigned int i = 0; i < element::shell_dofs; ++i)
+        for (unsigned int j = 0; j < element::shell_dofs; ++j)
+          product[i] += matrix(i, j) * x[j];
+      return product;
+    }
+  } // namespace
+
+  double Inertia::cell_energy(const CellIterator    &cell,
+                              const EvaluationPoint &point) const
+  {
+    const double c_a = point.acceleration_coefficient,
+                 c_v = point.velocity_coefficient;
+    if (!(c_a > 0))
+      return 0;
+    const ShellState &state = point.state;
+    const auto acceleration = spatial_rates(cell, state, Rate::acceleration);
+    const bool damped       = parameters_.damped() && c_v > 0;
+    const auto velocity = damped ? spatial_rates(cell, state, Rate::velocity)
+                                 : decltype(acceleration){};
+    std::array<double, element::shell_dofs> Ma{}, Cv{};
+    CellMatrices                           &matrices = cell_matrices();
+    const auto current = current_triangle(model_, cell, state);
+    if (sparse_cell_matrices(state))
+    {
+      SparseCellMatrix(mass_entries(cell)).add_times(1, acceleration, Ma);
+      if (damped)
+        sparse_damping(parameters_, current, mass_entries(cell), matrices.drag)
+            .add_times(1, velocity, Cv);
+    }
+    else
+    {
+      element::shell_mass(model_.triangle(cell), mass_properties(cell),
+                          matrices.mass);
+      Ma = times(matrices.mass, acceleration);
+      if (damped)
+      {
+        damping(cell, current, matrices.mass, matrices.damping, matrices.drag);
+        Cv = times(matrices.damping, velocity);
+      }
+    }
+    return dot(acceleration, Ma) / (2 * c_a) +
+           (damped ? dot(velocity, Cv) / (2 * c_v) : 0);
+  }
+
   KineticMeasures Inertia::measures(const ShellState &state) const
   {
     KineticMeasures     result;

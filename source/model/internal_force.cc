@@ -194,8 +194,19 @@ namespace coshell::model
       contribution.matrix.add(1.0, tangent);
   }
 
-  double InternalForce::cell_energy(const CellIterator &cell,
-                                    const ShellState   &state) const
+  bool InternalForce::has_potential() const
+  {
+    return true;
+  }
+
+  double InternalForce::cell_energy(const CellIterator    &cell,
+                                    const EvaluationPoint &point) const
+  {
+    return strain_energy(cell, point.state);
+  }
+
+  double InternalForce::strain_energy(const CellIterator &cell,
+                                      const ShellState   &state) const
   {
     if (kinematics_ == Formulation::corotational)
       return corotational_[cell->active_cell_index()].energy(
@@ -215,7 +226,7 @@ namespace coshell::model
   {
     double energy = 0;
     for (const auto &cell : model_.dof_handler().active_cell_iterators())
-      energy += cell_energy(cell, state);
+      energy += strain_energy(cell, state);
     return energy;
   }
 

@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cmath>
 #include <exception>
+#include <limits>
 #include <tuple>
 #include <type_traits>
 
@@ -492,6 +493,38 @@ namespace coshell::model
     assembly_seconds_ +=
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
             .count();
+  }
+
+  double ShellProblem::energy()
+  {
+    for (const auto &contribution : contributions_)
+      if (!contribution->has_potential())
+        return std::numeric_limits<double>::quiet_NaN();
+    const EvaluationPoint at          = point();
+    double                cell_energy = 0;
+    for_each_cell(
+        model_.dof_handler(),
+        [&](const CellIterator &cell, CellContribution &copy)
+        {
+          copy.energy = 0;
+          for (const auto &contribution : contributions_)
+            if (contribution->has_cell_terms())
+              copy.energy += contribution->cell_energy(cell, at);
+        },
+        [&cell_energy](const CellContribution &copy)
+        { cell_energy += copy.energy; },
+        CellRange::owned);
+    if (base::distributed())
+    {
+      Vector<double> sum(1);
+      sum[0] = cell_energy;
+      base::sum_over_ranks(sum);
+      cell_energy = sum[0];
+    }
+    double energy = cell_energy;
+    for (const auto &contribution : contributions_)
+      energy += contribution->global_energy(at);
+    return energy;
   }
 
   double ShellProblem::current_force_scale() const

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 #include <utility>
 #include <vector>
@@ -28,6 +29,14 @@ namespace coshell::solvers
 
     /// The smallest scale the line search takes.
     constexpr double smallest_line_search_scale = 0.1;
+    /// Armijo's sufficient decrease: the share of the linear model's
+    /// decrease a scale must achieve (Nocedal & Wright's usual 1e-4), and
+    /// the halvings tried.
+    constexpr double       armijo_decrease = 1e-4;
+    constexpr unsigned int armijo_halvings = 10;
+    /// Below this many round-offs of the energy, a decrease cannot be
+    /// judged: the correction is taken whole.
+    constexpr double energy_round_off = 1e3 * 2.2e-16;
 
     /// Why a step that ends with a prescribed move pending has failed.
     const std::string pending_move_note =
@@ -132,12 +141,34 @@ namespace coshell::solvers
         "Where a stiff barrier leaves the residual converging slowly, this "
         "stops at a stated accuracy of the configuration. Unit: length "
         "for translations (mm in the IOL scenes), rad for rotations.");
+    prm.declare_entry(
+        "Velocity tolerance", "0", Patterns::Double(0),
+        "0 = not used. In dynamics Newton has also converged when the "
+        "largest entry of its correction, before the collision filter and "
+        "the line search, divided by the time step is at most this (Li et "
+        "al. 2020, IPC: a tolerance on the velocity the step still expects "
+        "to change, so that the accuracy it stands for does not shrink with "
+        "the step). Where Correction tolerance is set too, the larger of "
+        "the two holds. Unit: length per second for translations (mm/s in "
+        "the IOL scenes), rad/s for rotations.");
     prm.declare_entry("Line search", "false", Patterns::Bool(),
                       "Scale each Newton correction du by s so that "
                       "|du.r(s du)| <= 0.8 |du.r(0)| (secant steps on the "
                       "energy slope, Crisfield 1991). Off by default: on "
                       "large-rotation steps the full Newton step, though it "
                       "raises the residual at first, converges faster.");
+    prm.declare_entry(
+        "Line search rule", "energy slope",
+        Patterns::Selection("energy slope|armijo"),
+        "With Line search: energy slope = Crisfield's secant steps on "
+        "du.r; armijo = backtracking on the incremental potential E (Li "
+        "et al. 2020, IPC): from the whole correction (after the collision "
+        "filter), halve the scale s until E(x + s du) <= E(x) - 1e-4 s "
+        "du.r, at most 10 times. Armijo needs every contribution to have a "
+        "potential (no follower pressure, no moments on finite rotations, "
+        "no SE3 translations); otherwise, and for a correction that climbs "
+        "the energy, the energy slope search is used. Unit: none (a "
+        "choice).");
     prm.declare_entry(
         "Climbs before convex tangent", "3", Patterns::Integer(1),
         "After this many corrections of an attempt have "
@@ -159,7 +190,11 @@ namespace coshell::solvers
     energy_tolerance     = prm.get_double("Energy tolerance");
     increment_tolerance  = prm.get_double("Increment tolerance");
     correction_tolerance = prm.get_double("Correction tolerance");
+    velocity_tolerance   = prm.get_double("Velocity tolerance");
     line_search          = prm.get_bool("Line search");
+    line_search_rule     = prm.get("Line search rule") == "armijo"
+                               ? LineSearchRule::armijo
+                               : LineSearchRule::energy_slope;
     divergence_limit     = prm.get_double("Divergence limit");
     climbs_before_convex_tangent =
         prm.get_integer("Climbs before convex tangent");
@@ -278,6 +313,39 @@ namespace coshell::solvers
     return {a, false, false};
   }
 
+  /// Armijo's backtracking on the problem's energy: the whole correction,
+  /// then halves, until the energy drops by at least armijo_decrease of
+  /// the linear model's prediction s du.r. As line_search(): rejected
+  /// trials are undone, an accepted one is left applied with its residual
+  /// in 'trial_residual' (and its energy in 'trial_energy'), the first
+  /// trial assembles 'tangent' if given.
+  Newton::LineSearch Newton::armijo_search(base::NonlinearProblem &problem,
+                                           const double          energy_at_zero,
+                                           const Vector<double> &residual,
+                                           const Vector<double> &correction,
+                                           Vector<double>       &trial_residual,
+                                           base::TangentMatrix  *tangent,
+                                           double &trial_energy) const
+  {
+    const double   slope_at_zero = correction * residual;
+    Vector<double> step(correction.size());
+    double         a = 1;
+    for (unsigned int trial = 0; trial <= armijo_halvings; ++trial, a *= 0.5)
+    {
+      step.equ(a, correction);
+      problem.begin_trial();
+      problem.apply_increment(step);
+      base::TangentMatrix *trial_tangent = trial == 0 ? tangent : nullptr;
+      problem.evaluate(trial_residual, trial_tangent);
+      trial_energy = problem.energy();
+      if (std::isfinite(trial_energy) &&
+          trial_energy <= energy_at_zero - armijo_decrease * a * slope_at_zero)
+        return {a, true, trial_tangent != nullptr};
+      undo_trial(problem, step);
+    }
+    return {2 * a, false, false};
+  }
+
   /// Applies the correction du, scaled already: keeps the line search's
   /// accepted trial, which is at x + du, if its evaluation is the kind the
   /// next iteration makes (with the tangent or without), and returns true;
@@ -333,11 +401,50 @@ namespace coshell::solvers
     bool whole_correction = false;
     /// The line search's accepted trial was kept: it evaluated the iterate.
     bool evaluated = false;
+    /// The problem's energy at the iterate, if the kept trial gave it
+    /// (NaN: not known yet).
+    double energy = std::numeric_limits<double>::quiet_NaN();
   };
 
-  unsigned int Newton::solve(base::NonlinearProblem &problem,
-                             const Observer         &observer) const
+  Newton::LineSearch Newton::search_line(base::NonlinearProblem &problem,
+                                         Iterate                &it,
+                                         const Vector<double>   &correction,
+                                         base::TangentMatrix    *tangent) const
   {
+    const double slope = correction * it.residual;
+    if (parameters_.line_search_rule ==
+            NewtonParameters::LineSearchRule::armijo &&
+        slope > 0)
+    {
+      const double energy =
+          std::isfinite(it.energy) ? it.energy : problem.energy();
+      it.energy = std::numeric_limits<double>::quiet_NaN();
+      if (std::isfinite(energy))
+      {
+        // A decrease lost in the energy's round-off cannot be judged.
+        if (slope <= energy_round_off * std::abs(energy))
+          return {};
+        double     trial_energy = 0;
+        LineSearch search =
+            armijo_search(problem, energy, it.residual, correction,
+                          it.trial_residual, tangent, trial_energy);
+        if (search.accepted)
+          it.energy = trial_energy;
+        return search;
+      }
+    }
+    it.energy = std::numeric_limits<double>::quiet_NaN();
+    return line_search(problem, it.residual, correction, it.trial_residual,
+                       tangent);
+  }
+
+  unsigned int Newton::solve(base::NonlinearProblem &problem,
+                             const Observer         &observer,
+                             const double            time_step) const
+  {
+    const double correction_tolerance =
+        std::max(parameters_.correction_tolerance,
+                 parameters_.velocity_tolerance * time_step);
     problem.begin_solve();
     Iterate it(problem, parameters_.residual_tolerance, tangent_);
     assemble_for_solver(problem, it.tangent);
@@ -374,7 +481,8 @@ namespace coshell::solvers
                             it.corrections.summary() + ")" +
                             (pending ? "; " + pending_move_note : "") +
                             problem.failure_context());
-      correct(problem, it, iteration, relative_residual, observer);
+      correct(problem, it, iteration, relative_residual, correction_tolerance,
+              observer);
     }
   }
 
@@ -397,6 +505,7 @@ namespace coshell::solvers
                        Iterate                &it,
                        unsigned int            iteration,
                        double                  relative_residual,
+                       double                  correction_tolerance,
                        const Observer         &observer) const
   {
     Vector<double> du = correction(problem, it.tangent, it.residual);
@@ -410,8 +519,7 @@ namespace coshell::solvers
     if (it.first_energy == 0)
       it.first_energy = std::max(energy, 1e-300);
     const bool direction_small =
-        parameters_.correction_tolerance > 0 &&
-        du.linfty_norm() <= parameters_.correction_tolerance;
+        correction_tolerance > 0 && du.linfty_norm() <= correction_tolerance;
     // The step filter comes first, so that the line search only tries
     // admissible (e.g. collision-free) configurations.
     const double fraction = problem.admissible_fraction(du);
@@ -423,8 +531,8 @@ namespace coshell::solvers
       // The first trial's tangent, as the next evaluation's.
       const bool trial_tangent =
           !direction_small && !it.prediction.expects_convergence(fraction == 1);
-      search = line_search(problem, it.residual, du, it.trial_residual,
-                           trial_tangent ? &it.tangent : nullptr);
+      search =
+          search_line(problem, it, du, trial_tangent ? &it.tangent : nullptr);
       du *= search.scale;
     }
     it.corrections.add(search.scale <= smallest_line_search_scale, slope < 0);
@@ -440,6 +548,8 @@ namespace coshell::solvers
         !it.prediction.expects_convergence(it.whole_correction);
     it.evaluated = apply_correction(problem, search, next_with_tangent, du,
                                     it.residual, it.trial_residual);
+    if (!it.evaluated)
+      it.energy = std::numeric_limits<double>::quiet_NaN();
     if (observer)
       observer({iteration, relative_residual, du.l2_norm(),
                 energy / it.first_energy});

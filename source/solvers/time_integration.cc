@@ -125,6 +125,10 @@ namespace coshell::solvers
       {
         problem_.evaluate(r, K);
       }
+      double energy() override
+      {
+        return problem_.energy();
+      }
       double force_scale() const override
       {
         return problem_.force_scale();
@@ -249,7 +253,7 @@ namespace coshell::solvers
         newton.single_correction(step_problem, observe);
         return 1;
       }
-      record.iterations = newton.solve(step_problem, observe);
+      record.iterations = newton.solve(step_problem, observe, record.dt);
       // The linearized step evaluates no forces at its end, so its work
       // is unknown there: the guard judges Newton's steps only.
       if (check)

@@ -1,11 +1,11 @@
 // The contact contribution of a small plate over a rigid plane, assembled
 // as ShellProblem does: its tangent against central differences of its
-// forces, with the barrier, the penalty and friction; without friction
-// its forces against central differences of the contact potential (the
-// barrier and the penalty are potentials); the equal and opposite
+// forces, with the barrier, the penalty and friction; its forces against
+// central differences of its energy (the barrier, the penalty and
+// friction lagged as in IPC are potentials); the equal and opposite
 // force on the obstacle and the slopes of its force and moment (what a
-// linearized step reports its load with); the same tangent check for
-// self contact.
+// linearized step reports its load with); the same tangent and energy
+// checks for self contact and edge-edge pairs.
 
 #include <coshell/base/expressions.h>
 #include <coshell/base/tangent_matrix.h>
@@ -253,17 +253,20 @@ namespace
     state.apply_increment(move);
   }
 
-  /// Frictionless contact is a potential: the contribution's forces at
-  /// time 1 against central differences of Contact::potential() over
-  /// every translation (force on the shell = -gradient).
+  /// Contact is a potential: the contribution's forces at time 1 against
+  /// central differences of its energy (the pairs' barrier or penalty
+  /// energy, and friction's lagged potential, Contact::potential() plus
+  /// the step's friction dissipation) over every translation (force on
+  /// the shell = -gradient).
   void expect_forces_are_minus_potential_gradient(
-      const contact::Contact       &contact,
       contact::ContactContribution &contribution,
       model::ShellState            &state,
       unsigned int                  n)
   {
-    const Assembled at    = assemble(contribution, state, 1, n);
-    const double    scale = at.force.linfty_norm();
+    ASSERT_TRUE(contribution.has_potential());
+    const model::EvaluationPoint point{state};
+    const Assembled              at    = assemble(contribution, state, 1, n);
+    const double                 scale = at.force.linfty_norm();
     EXPECT_GT(scale, 0);
     const double h = 1e-7;
     for (unsigned int j = 0; j < n; ++j)
@@ -272,7 +275,7 @@ namespace
         continue;
       const auto [plus, minus] = measured_both_ways(
           contribution, state, n, j, h,
-          [&](const Assembled &) { return contact.potential(); });
+          [&](const Assembled &) { return contribution.global_energy(point); });
       EXPECT_NEAR(-(plus - minus) / (2 * h), at.force[j], 1e-5 * scale)
           << "DoF " << j;
     }
@@ -316,9 +319,7 @@ namespace
     }
     state.apply_increment(move);
     expect_tangent_matches_forces(contribution, state, n);
-    if (friction == 0)
-      expect_forces_are_minus_potential_gradient(contact, contribution, state,
-                                                 n);
+    expect_forces_are_minus_potential_gradient(contribution, state, n);
     expect_force_slopes_match_loads(contact, contribution, state, n);
     const auto &load =
         expect_action_and_reaction(contact, contribution, plate, n);
@@ -419,6 +420,7 @@ namespace
       }
     state.apply_increment(move);
     const Assembled at = expect_tangent_matches_forces(contribution, state, n);
+    expect_forces_are_minus_potential_gradient(contribution, state, n);
     EXPECT_GT(contact.self_active_pairs(), 0u);
     dealii::Tensor<1, 3> total;
     double               largest = 0;
@@ -532,6 +534,7 @@ namespace
       return contact.obstacle_loads()[0].active_pairs;
     }
     expect_tangent_matches_forces(contribution, state, n);
+    expect_forces_are_minus_potential_gradient(contribution, state, n);
     const auto &load =
         expect_action_and_reaction(contact, contribution, plate, n);
     last_knife_force = load.force;

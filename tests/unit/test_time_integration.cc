@@ -163,7 +163,7 @@ namespace
       return x_;
     }
     /// 1/2 v.M v + 1/2 x.K x.
-    double energy() const
+    double mechanical_energy() const
     {
       return 0.5 * M_.matrix_norm_square(v_) + 0.5 * K_.matrix_norm_square(x_);
     }
@@ -311,12 +311,13 @@ TEST(TimeIntegration, GeneralizedAlphaAtRhoOneConservesTheEnergy)
   problem.x()[0]        = 1;
   problem.velocity()[1] = 0.5;
   problem.save();
-  const double initial = problem.energy();
+  const double initial = problem.mechanical_energy();
   double       largest = 0;
   EXPECT_EQ(run(integrator("generalized alpha", 0.1, 1.0), problem, 0, 20,
-                [&](const auto &) {
-                  largest =
-                      std::max(largest, std::abs(problem.energy() - initial));
+                [&](const auto &)
+                {
+                  largest = std::max(
+                      largest, std::abs(problem.mechanical_energy() - initial));
                 }),
             200u);
   EXPECT_LT(largest, 1e-12 * initial);
@@ -334,16 +335,16 @@ TEST(TimeIntegration, ImplicitEulerDividesTheEnergyByOnePlusOmegaHSquared)
   MassSpring   problem = oscillator(omega);
   problem.x()[0]       = 1;
   problem.save();
-  double       previous = problem.energy();
+  double       previous = problem.mechanical_energy();
   const double ratio    = 1 / (1 + omega * omega * h * h);
   run(integrator("implicit euler", h), problem, 0, 1,
       [&](const auto &)
       {
-        EXPECT_NEAR(problem.energy() / previous, ratio, 1e-13);
-        previous = problem.energy();
+        EXPECT_NEAR(problem.mechanical_energy() / previous, ratio, 1e-13);
+        previous = problem.mechanical_energy();
       });
-  EXPECT_NEAR(problem.energy(), 0.5 * omega * omega * std::pow(ratio, 20),
-              1e-12);
+  EXPECT_NEAR(problem.mechanical_energy(),
+              0.5 * omega * omega * std::pow(ratio, 20), 1e-12);
 }
 
 // The error at t = 1 of the oscillator x = cos(2 pi t) over one period:
@@ -489,7 +490,7 @@ TEST(TimeIntegration, CutsAFailedStepAndUndoesIt)
   problem.x()[0]     = 1;
   problem.save();
   problem.longest_step = 0.03;
-  const double initial = problem.energy();
+  const double initial = problem.mechanical_energy();
   double       reached = 0, largest = 0;
   run(integrator("generalized alpha", 0.05, 1.0, 1e-6), problem, 0, 1,
       [&](const TimeIntegration::StepRecord &record)
@@ -500,7 +501,7 @@ TEST(TimeIntegration, CutsAFailedStepAndUndoesIt)
       });
   EXPECT_DOUBLE_EQ(reached, 1);
   EXPECT_GT(largest, 0.02); // it grew back after the cut
-  EXPECT_NEAR(problem.energy(), initial, 1e-12 * initial);
+  EXPECT_NEAR(problem.mechanical_energy(), initial, 1e-12 * initial);
   // Out of cuts: the run stops with a NewtonFailure naming the step.
   problem.longest_step = 1e-3;
   EXPECT_THROW(

@@ -5,6 +5,7 @@
 #include <deal.II/lac/sparsity_pattern.h>
 #include <deal.II/lac/vector.h>
 
+#include <limits>
 #include <string>
 
 namespace coshell::base
@@ -41,6 +42,17 @@ namespace coshell::base
     /// 'tangent' comes from reinit_tangent() of the same solve.
     virtual void evaluate(dealii::Vector<double> &residual,
                           TangentMatrix          *tangent) = 0;
+
+    /// The potential whose negative gradient the residual is, at the
+    /// iterate of the last evaluate() (call it after evaluate(), at the
+    /// same iterate): the energy a line search on the potential compares.
+    /// Its unit is that of force times length. A quiet NaN when the problem
+    /// has no potential (a follower load, body-frame translations): a
+    /// solver then judges a step by the residual alone.
+    virtual double energy()
+    {
+      return std::numeric_limits<double>::quiet_NaN();
+    }
 
     /// The size of the forces at the last evaluate(), against which |r| is
     /// measured. It must not vanish when the external load does (a

@@ -849,7 +849,13 @@ namespace coshell::contact
     void begin_trial() override;
     void end_trial() override;
     bool symmetric_tangent() const override;
-    bool use_convex_tangent() override;
+    /// The pairs' barrier or penalty energy plus friction's lagged
+    /// potential (its dissipation over the step), at the last evaluation.
+    /// While an obstacle is held back by the step filter, the residual
+    /// also holds its anticipated move, which no potential has.
+    bool   has_potential() const override;
+    double global_energy(const model::EvaluationPoint &point) const override;
+    bool   use_convex_tangent() override;
     std::string failure_context() const override;
 
   private:

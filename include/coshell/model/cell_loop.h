@@ -29,7 +29,9 @@ namespace coshell::model
     /// inertia): assembled unconstrained, they give the force scale of a
     /// nonlinear solve and the work of the loads.
     std::array<std::array<double, element::shell_dofs>, 3> forces_by_kind{};
-    std::string                                            error;
+    /// The cell's energy, when a loop asks for energies.
+    double      energy = 0;
+    std::string error;
   };
 
   /// Which cells a loop visits: all of them (results every rank needs,

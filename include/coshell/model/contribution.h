@@ -151,6 +151,27 @@ namespace coshell::model
     virtual void end_trial() {}
 
     virtual bool symmetric_tangent() const = 0;
+
+    /// Whether this contribution's force is minus the gradient of the
+    /// energy that cell_energy() and global_energy() give (up to what its
+    /// class documents), so that a line search may compare energies.
+    virtual bool has_potential() const
+    {
+      return false;
+    }
+    /// This cell's share of the potential at 'point' (force times length).
+    virtual double cell_energy(const CellIterator & /*cell*/,
+                               const EvaluationPoint & /*point*/) const
+    {
+      return 0;
+    }
+    /// The share that is not per cell (loads, contact pairs): at 'point',
+    /// or, for terms made by add_blocks(), at its last call.
+    virtual double global_energy(const EvaluationPoint & /*point*/) const
+    {
+      return 0;
+    }
+
     /// See NonlinearProblem::use_convex_tangent(): switch to a positive
     /// semi-definite tangent until the step is accepted or undone; true if
     /// anything changed.

@@ -31,10 +31,17 @@ namespace coshell::model
     void        add_global(const EvaluationPoint  &point,
                            dealii::Vector<double> &residual) const override;
     bool        symmetric_tangent() const override;
+    /// The dead loads' potential -lambda f.u, unless a pressure follows
+    /// the normals or a point moment acts on finite rotations: neither has
+    /// a potential in these unknowns.
+    bool   has_potential() const override;
+    double global_energy(const EvaluationPoint &point) const override;
 
   private:
     const ShellModel      &model_;
     dealii::Vector<double> dead_load_;
     double                 follower_pressure_ = 0;
+    /// Whether the dead loads include moments on finite rotations.
+    bool moments_on_finite_rotations_ = false;
   };
 } // namespace coshell::model

@@ -60,6 +60,18 @@ namespace coshell::model
                          CellContribution      &contribution,
                          bool                   with_tangent) const override;
     bool        symmetric_tangent() const override;
+    /// The incremental potential of the time integrator, whose rates are
+    /// affine in the step increment (acceleration c_a q + a_0, velocity
+    /// c_v q + v_0): a.M a / (2 c_a) + v.C v / (2 c_v), with C taken at
+    /// the current shape (its change is not differentiated, as in the
+    /// tangent). Exact on translations. On rotations its gradient is the
+    /// inertia force to first order in the step rotation
+    /// (doc/theory/dynamics.md, "The incremental potential"). None with
+    /// body-frame translations (SE3), whose force has no potential in
+    /// these unknowns.
+    bool   has_potential() const override;
+    double cell_energy(const CellIterator    &cell,
+                       const EvaluationPoint &point) const override;
 
     /// Kinetic energy and momenta.
     KineticMeasures measures(const ShellState &state) const;

@@ -40,8 +40,14 @@ namespace coshell::model
                          CellContribution      &contribution,
                          bool                   with_tangent) const override;
     bool        symmetric_tangent() const override;
-    void        begin_solve() override;
-    void        restore() override;
+    /// The strain energy: the force is its gradient (the tangent its
+    /// Hessian with the consistent tangent, the Hessian's symmetric part
+    /// with the symmetric one).
+    bool   has_potential() const override;
+    double cell_energy(const CellIterator    &cell,
+                       const EvaluationPoint &point) const override;
+    void   begin_solve() override;
+    void   restore() override;
 
     /// Elastic energy stored in the shell, J (force x length).
     double strain_energy(const ShellState &state) const;
@@ -84,7 +90,8 @@ namespace coshell::model
 
     element::NodalRotations nodal_rotations(const CellIterator &cell,
                                             const ShellState   &state) const;
-    double cell_energy(const CellIterator &cell, const ShellState &state) const;
+    double                  strain_energy(const CellIterator &cell,
+                                          const ShellState   &state) const;
   };
 
   /// The strains of one cell, recovered from its resultants through its

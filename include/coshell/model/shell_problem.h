@@ -85,6 +85,9 @@ namespace coshell::model
     void   begin_solve() override;
     void   evaluate(dealii::Vector<double> &residual,
                     base::TangentMatrix    *tangent) override;
+    /// The sum of the contributions' energies (cells over the ranks);
+    /// NaN unless every contribution has a potential.
+    double energy() override;
     double force_scale() const override;
     bool   prescribed_increment_pending() const override;
     bool   prescribed_move_blocked() const override;

@@ -33,7 +33,17 @@ namespace coshell::solvers
     /// Largest entry of the Newton correction that counts as converged
     /// (0: not used).
     double correction_tolerance = 0;
-    bool   line_search          = false;
+    /// Largest entry of the correction per unit time step that counts as
+    /// converged in dynamics (0: not used); in statics it is not used.
+    double velocity_tolerance = 0;
+    bool   line_search        = false;
+    /// How the line search judges a scale.
+    enum class LineSearchRule
+    {
+      energy_slope, ///< Crisfield's secant steps on du.r
+      armijo        ///< backtracking on the problem's energy()
+    };
+    LineSearchRule line_search_rule = LineSearchRule::energy_slope;
     /// |r| / scale above this counts as divergence.
     double divergence_limit = 1e8;
     /// Climbing corrections in an attempt before Newton asks the problem
@@ -67,8 +77,10 @@ namespace coshell::solvers
     /// Iterates from the problem's current state until converged; returns
     /// the number of corrections applied. Throws NewtonFailure, leaving the
     /// problem wherever it got.
+    /// 'time_step' (s) scales the velocity tolerance; 0 in statics.
     unsigned int solve(base::NonlinearProblem &problem,
-                       const Observer         &observer = Observer()) const;
+                       const Observer         &observer  = Observer(),
+                       double                  time_step = 0) const;
 
     /// Exactly one correction from the current state, no convergence test
     /// (the linearized implicit scheme). Returns the relative residual
@@ -115,6 +127,13 @@ namespace coshell::solvers
                            const dealii::Vector<double> &correction,
                            dealii::Vector<double>       &trial_residual,
                            base::TangentMatrix          *tangent) const;
+    LineSearch armijo_search(base::NonlinearProblem       &problem,
+                             double                        energy_at_zero,
+                             const dealii::Vector<double> &residual,
+                             const dealii::Vector<double> &correction,
+                             dealii::Vector<double>       &trial_residual,
+                             base::TangentMatrix          *tangent,
+                             double                       &trial_energy) const;
     bool       apply_correction(base::NonlinearProblem &problem,
                                 const LineSearch       &search,
                                 bool                    next_with_tangent,
@@ -123,6 +142,12 @@ namespace coshell::solvers
                                 dealii::Vector<double> &trial_residual) const;
     /// What a solve carries from one iteration to the next (newton.cc).
     struct Iterate;
+    /// The line search the parameters ask for; Crisfield's where the
+    /// problem has no energy or the correction does not descend.
+    LineSearch search_line(base::NonlinearProblem       &problem,
+                           Iterate                      &it,
+                           const dealii::Vector<double> &correction,
+                           base::TangentMatrix          *tangent) const;
     /// The residual's norm relative to the force scale, fed to the
     /// convergence prediction; throws when it is not finite or diverged.
     double judge_residual(base::NonlinearProblem &problem, Iterate &it) const;
@@ -135,6 +160,7 @@ namespace coshell::solvers
                  Iterate                &it,
                  unsigned int            iteration,
                  double                  relative_residual,
+                 double                  correction_tolerance,
                  const Observer         &observer) const;
   };
 
