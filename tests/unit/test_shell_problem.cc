@@ -12,15 +12,20 @@
 //
 // The co-rotational internal force as a potential: the residual against
 // finite differences of the strain energy, the tangent against finite
-// differences of the residual.
+// differences of the residual; with dead loads added, the residual against
+// finite differences of the problem's energy (ShellProblem::energy()), and
+// no energy where a point moment acts on finite rotations.
 
 #include <coshell/mesh/mesh.h>
+#include <coshell/model/external_loads.h>
 #include <coshell/model/internal_force.h>
+#include <coshell/model/loads.h>
 #include <coshell/model/shell_problem.h>
 
 #include <deal.II/lac/full_matrix.h>
 
 #include <cmath>
+#include <sstream>
 
 #include <gtest/gtest.h>
 
@@ -352,4 +357,94 @@ TEST(InternalForce, ConsistentTangentIsTheDerivativeOfTheGradient)
   }
   ASSERT_GT(largest, 0);
   EXPECT_LT(mismatch, 1e-6 * largest);
+}
+
+// The whole problem as a potential: the co-rotational shell under dead
+// loads (pressure, gravity and a point force), its residual against central
+// differences of ShellProblem::energy() over every DoF, through the
+// problem's increment map; a point moment on finite rotations has no
+// potential, and the problem then has no energy.
+namespace
+{
+  /// Loads from the given entries of subsection Loads.
+  model::Loads
+  loads_of(const std::vector<std::pair<std::string, std::string>> &entries)
+  {
+    dealii::ParameterHandler prm;
+    model::Loads::declare_parameters(prm);
+    prm.enter_subsection("Loads");
+    for (const auto &[name, value] : entries)
+      prm.set(name, value);
+    prm.leave_subsection();
+    model::Loads loads;
+    loads.parse_parameters(prm);
+    return loads;
+  }
+
+  struct LoadedPlate : PlateMesh
+  {
+    std::ostringstream  log;
+    model::ShellProblem problem;
+
+    explicit LoadedPlate(const model::Loads &loads)
+        : problem(model, state, constraints, contributions(loads))
+    {
+    }
+
+    std::vector<std::unique_ptr<model::Contribution>>
+    contributions(const model::Loads &loads)
+    {
+      std::vector<std::unique_ptr<model::Contribution>> list;
+      list.push_back(std::make_unique<model::InternalForce>(
+          model, model::Formulation::corotational,
+          element::CorotationalTangent::consistent, false, false));
+      list.push_back(
+          std::make_unique<model::ExternalLoads>(model, loads, true, log));
+      return list;
+    }
+
+    /// The energy after 'increment', evaluated there, then back.
+    double energy_after(const dealii::Vector<double> &increment)
+    {
+      problem.apply_increment(increment);
+      dealii::Vector<double> residual(increment.size());
+      problem.evaluate(residual, nullptr);
+      const double energy = problem.energy();
+      problem.restore();
+      return energy;
+    }
+  };
+} // namespace
+
+TEST(ShellProblem, ResidualIsMinusTheEnergyGradientUnderDeadLoads)
+{
+  LoadedPlate            plate(loads_of({{"Pressure", "0.3"},
+                                         {"Gravity", "0.1, -0.2, 0.5"},
+                                         {"Point forces", "1 1 0 : 0.2 0.1 -0.4"}}));
+  const unsigned int     n = plate.model.n_dofs();
+  dealii::Vector<double> deformation(n);
+  for (unsigned int k = 0; k < n; ++k)
+    deformation[k] = 0.1 * std::sin(1.7 * (k + 1));
+  plate.problem.apply_increment(deformation);
+  plate.problem.save();
+  dealii::Vector<double> residual(n);
+  plate.problem.evaluate(residual, nullptr);
+  ASSERT_TRUE(std::isfinite(plate.problem.energy()));
+  const double step = 1e-6, scale = residual.linfty_norm();
+  ASSERT_GT(scale, 0);
+  for (unsigned int k = 0; k < n; ++k)
+  {
+    const double slope = (plate.energy_after(unit_increment(n, k, step)) -
+                          plate.energy_after(unit_increment(n, k, -step))) /
+                         (2 * step);
+    EXPECT_NEAR(slope, -residual[k], 1e-6 * scale) << "DoF " << k;
+  }
+}
+
+TEST(ShellProblem, APointMomentOnFiniteRotationsHasNoEnergy)
+{
+  LoadedPlate plate(loads_of({{"Point moments", "1 1 0 : 0 0.1 0"}}));
+  dealii::Vector<double> residual(plate.model.n_dofs());
+  plate.problem.evaluate(residual, nullptr);
+  EXPECT_TRUE(std::isnan(plate.problem.energy()));
 }
