@@ -49,6 +49,7 @@ namespace coshell::contact
       parameters_.penalty_stiffness = material.youngs_modulus / mean;
     if (parameters_.penalty_smoothing <= 0)
       parameters_.penalty_smoothing = 0.01 * thinnest;
+    pair_potential_ = make_contact_potential(parameters_, activation_);
 
     const auto &vertices = model.surface().get_vertices();
     shell_vertex_area_.assign(vertices.size(), 0);
@@ -126,8 +127,7 @@ namespace coshell::contact
 
   double Contact::reach(unsigned int obstacle) const
   {
-    return largest_offset(obstacle) +
-           (parameters_.method == Method::barrier ? activation_ : 0.0);
+    return largest_offset(obstacle) + pair_potential_->activation_distance();
   }
 
   std::vector<Point<3>>
@@ -181,7 +181,7 @@ namespace coshell::contact
 
   double Contact::pair_reach(double offset) const
   {
-    return offset + (parameters_.method == Method::barrier ? activation_ : 0.0);
+    return offset + pair_potential_->activation_distance();
   }
 
   void Contact::obstacle_moved(unsigned int obstacle)
@@ -324,17 +324,10 @@ namespace coshell::contact
 
   using base::Stopwatch;
 
-  bool Contact::filters_steps() const
-  {
-    return parameters_.method == Method::barrier ||
-           (parameters_.method == Method::penalty &&
-            parameters_.penalty_step_filter > 0);
-  }
-
   double Contact::admissible_fraction(const model::ShellState &state,
                                       const Vector<double>    &correction) const
   {
-    if (!filters_steps())
+    if (!pair_potential_->filters_steps())
       return 1;
     const Stopwatch             watch(timing_.filter);
     const std::vector<Point<3>> x = shell_positions(state);
@@ -358,8 +351,9 @@ namespace coshell::contact
       std::vector<Tensor<1, 3>> dX(current_[o].size());
       for (unsigned int i = 0; i < dX.size(); ++i)
         dX[i] = target_[o][i] - current_[o][i];
-      const double fraction =
-          filters_steps() ? filter_fraction({x, nullptr, o, &dX}, o) : 1.0;
+      const double fraction = pair_potential_->filters_steps()
+                                  ? filter_fraction({x, nullptr, o, &dX}, o)
+                                  : 1.0;
       if (fraction >= 1)
         current_[o] = target_[o];
       else
@@ -460,8 +454,7 @@ namespace coshell::contact
     saved_positions_              = positions_;
     saved_time_                   = target_time_;
     lagged_normal_forces_         = normal_forces_;
-    if (parameters_.method == Method::barrier &&
-        smallest_gap_ < parameters_.stiffening_gap_ratio * activation_)
+    if (pair_potential_->stiffens(smallest_gap_))
       kappa_ *= 2; // the barrier is getting too stiff a spring: stiffen it
     forget_gaps();
   }

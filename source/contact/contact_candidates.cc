@@ -433,10 +433,9 @@ namespace coshell::contact
                                      bool          measure,
                                      Candidates   &c) const
   {
-    const auto  &x  = motion.x;
-    const auto  *dx = motion.dx;
-    const double activation =
-        parameters_.method == Method::barrier ? activation_ : 0.0;
+    const auto    &x          = motion.x;
+    const auto    *dx         = motion.dx;
+    const double   activation = pair_potential_->activation_distance();
     Hits           hits;
     ExclusionMarks excluded_triangles(shell_triangles_.size());
     auto          &vertex_triangle = c.self_vertex_triangle;
@@ -600,13 +599,6 @@ namespace coshell::contact
     return fraction;
   }
 
-  double Contact::filter_offset(double kept) const
-  {
-    return parameters_.method == Method::penalty
-               ? parameters_.penalty_step_filter * kept
-               : kept;
-  }
-
   bool Contact::out_of_reach(const Screen        &screen,
                              const CandidateRows &rows,
                              unsigned int         row) const
@@ -619,7 +611,8 @@ namespace coshell::contact
                            const CandidateRows &rows,
                            unsigned int         row) const
   {
-    return screen.clears(rows.nearest[row], filter_offset(rows.thickest[row]));
+    return screen.clears(rows.nearest[row],
+                         pair_potential_->filter_offset(rows.thickest[row]));
   }
 
   /// The fraction one listed pair allows. Only pairs whose swept boxes
@@ -634,7 +627,7 @@ namespace coshell::contact
                                        const Displacements &moves,
                                        double               kept) const
   {
-    const double offset = filter_offset(kept);
+    const double offset = pair_potential_->filter_offset(kept);
     if (screen.skips_filter(listed, offset, moves) ||
         !swept_boxes_meet(type, points, moves, offset))
       return 1;
@@ -662,7 +655,8 @@ namespace coshell::contact
            i < vertex_triangle.start[k + 1]; ++i)
       {
         const double kept = offset(o, true, v);
-        if (screen.clears(vertex_triangle.distance[i], filter_offset(kept)))
+        if (screen.clears(vertex_triangle.distance[i],
+                          pair_potential_->filter_offset(kept)))
           continue;
         const auto &t = triangles[vertex_triangle.other[i]];
         fraction      = std::min(
@@ -684,7 +678,8 @@ namespace coshell::contact
       {
         const unsigned triangle = triangle_vertex.other[i];
         const double   kept     = offset(o, false, triangle);
-        if (screen.clears(triangle_vertex.distance[i], filter_offset(kept)))
+        if (screen.clears(triangle_vertex.distance[i],
+                          pair_potential_->filter_offset(kept)))
           continue;
         const auto &t = shell_triangles_[triangle];
         fraction      = std::min(
@@ -718,7 +713,7 @@ namespace coshell::contact
         continue;
       const auto [a, b]    = shell_edges_[e];
       const double kept    = edge_offset(o, e);
-      const double cleared = filter_offset(kept);
+      const double cleared = pair_potential_->filter_offset(kept);
       for (unsigned i = rows.start[e]; i < rows.start[e + 1]; ++i)
       {
         if (screen.clears(rows.distance[i], cleared))
@@ -746,7 +741,7 @@ namespace coshell::contact
     const auto  filter   = [&](double listed, PrimitivePair type,
                             const std::array<unsigned, 4> &ids, double kept)
     {
-      if (screen.clears(listed, filter_offset(kept)))
+      if (screen.clears(listed, pair_potential_->filter_offset(kept)))
         return;
       fraction = std::min(
           fraction,
@@ -814,9 +809,8 @@ namespace coshell::contact
       make_self_candidates(still, shell_triangle_tree(x, nullptr, 0), margin,
                            true, c);
       coupling_pairs_.clear();
-      const double activation =
-          parameters_.method == Method::barrier ? activation_ : 0.0;
-      const auto &vertex_triangle = c.self_vertex_triangle;
+      const double activation      = pair_potential_->activation_distance();
+      const auto  &vertex_triangle = c.self_vertex_triangle;
       for (unsigned int k = 0; k < shell_vertices_.size(); ++k)
         for (unsigned i = vertex_triangle.start[k];
              i < vertex_triangle.start[k + 1]; ++i)

@@ -31,9 +31,7 @@ namespace coshell::contact
   {
     std::map<std::string, std::vector<double>> arrays;
     // save() doubles kappa when the barrier got too stiff a spring.
-    const bool stiffen =
-        parameters_.method == Method::barrier &&
-        smallest_gap_ < parameters_.stiffening_gap_ratio * activation_;
+    const bool stiffen        = pair_potential_->stiffens(smallest_gap_);
     arrays["contact_scalars"] = {stiffen ? 2 * kappa_ : kappa_, target_time_};
     arrays["contact_obstacle_work"]      = obstacle_work();
     arrays["contact_obstacle_potential"] = potential_per_obstacle_;

@@ -269,17 +269,7 @@ namespace coshell::contact
           << " (length units), is between shell vertex " << nearest_vertex
           << " (" << positions_[nearest_vertex] << ") and obstacle "
           << name(nearest_obstacle);
-    if (parameters_.method == Method::penalty &&
-        parameters_.penalty_step_filter > 0 && nearest_gap < 0)
-      // The filter stops pairs at f of their offset whatever the force:
-      // a penalty that cannot carry the load within the rest stalls there.
-      out << "; the penalty step filter keeps each pair "
-          << parameters_.penalty_step_filter
-          << " of its offset apart, and a penalty too soft to carry the "
-             "contact force within the rest jams: raise Contact/Penalty "
-             "stiffness ("
-          << parameters_.penalty_stiffness
-          << " N/mm^3 in mm-N units) or lower Contact/Penalty step filter";
+    pair_potential_->explain_jam(out, nearest_gap);
     return out.str();
   }
 } // namespace coshell::contact

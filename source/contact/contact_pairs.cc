@@ -238,9 +238,8 @@ namespace coshell::contact
                                 const Screen                &screen,
                                 PairSelector                &selector)
   {
-    const double activation =
-        parameters_.method == Method::barrier ? activation_ : 0.0;
-    auto &rows = candidates_.self_vertex_triangle;
+    const double activation = pair_potential_->activation_distance();
+    auto        &rows       = candidates_.self_vertex_triangle;
     for (unsigned int k = 0; k < shell_vertices_.size(); ++k)
     {
       if (out_of_reach(screen, rows, k))
@@ -345,10 +344,8 @@ namespace coshell::contact
     for (unsigned int o = 0; o < current_.size(); ++o)
       largest = std::max(largest, reach(o));
     if (parameters_.self_contact)
-      largest = std::max(
-          largest,
-          largest_thickness_ +
-              (parameters_.method == Method::barrier ? activation_ : 0.0));
+      largest = std::max(largest, largest_thickness_ +
+                                      pair_potential_->activation_distance());
     return largest;
   }
 
@@ -475,14 +472,10 @@ namespace coshell::contact
       const auto   s        = pair_distance(pair, points, true);
       const double distance = std::sqrt(s.value);
       const double gap      = distance - offset(pair);
-      const bool   barrier  = parameters_.method == Method::barrier;
-      const ScalarDerivatives phi =
-          barrier ? log_barrier(gap, activation_)
-                  : smoothed_penalty(gap, parameters_.penalty_smoothing);
+      const ScalarDerivatives phi = pair_potential_->of_gap(gap);
       if (phi.first == 0 && phi.second == 0)
         continue;
-      const double weight =
-          (barrier ? kappa_ : parameters_.penalty_stiffness) * pair.area;
+      const double weight = pair_potential_->stiffness(kappa_) * pair.area;
       // The tangent, and the anticipated obstacle move, need the Hessian.
       const PairEnergy energy =
           pair_energy(pair, points, s, weight, phi,
@@ -674,9 +667,8 @@ namespace coshell::contact
                                      const Screen                &screen,
                                      PairSelector                &selector)
   {
-    const double activation =
-        parameters_.method == Method::barrier ? activation_ : 0.0;
-    auto &rows = candidates_.self_edge_edge;
+    const double activation = pair_potential_->activation_distance();
+    auto        &rows       = candidates_.self_edge_edge;
     for (unsigned int e = 0; e < shell_edges_.size(); ++e)
     {
       if (out_of_reach(screen, rows, e))

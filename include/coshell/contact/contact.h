@@ -2,6 +2,7 @@
 
 #include <coshell/contact/barrier.h>
 #include <coshell/contact/ccd.h>
+#include <coshell/contact/contact_potential.h>
 #include <coshell/contact/distances.h>
 #include <coshell/contact/obstacle.h>
 #include <coshell/model/contribution.h>
@@ -350,7 +351,14 @@ namespace coshell::contact
     mutable std::vector<dealii::Point<3>>            coupling_positions_;
     mutable std::vector<std::array<unsigned int, 2>> coupling_pairs_;
     mutable std::uint64_t                            coupling_generation_ = 0;
-    double                               kappa_ = 0, activation_ = 0;
+    /// kappa_: the barrier stiffness, which save() doubles when the
+    /// potential stiffens; made and checkpointed for the penalty too, so
+    /// that the checkpoint and the summary keep one layout. activation_:
+    /// the barrier's activation distance, also the scale of the gap
+    /// output and of the squeeze report for either method.
+    double kappa_ = 0, activation_ = 0;
+    /// The pair potential of parameters_.method, made once.
+    std::unique_ptr<ContactPotential>    pair_potential_;
     std::vector<unsigned int>            shell_vertices_; ///< used
     std::vector<double>                  shell_vertex_area_;
     std::vector<std::array<unsigned, 3>> shell_triangles_;
@@ -587,8 +595,6 @@ namespace coshell::contact
     /// The step filter: the largest fraction of the motion that keeps
     /// every pair (of obstacle 'only', or of all and self contact) apart.
     double filter_fraction(const Motion &motion, unsigned int only) const;
-    /// The part of a pair's offset 'kept' that the step filter keeps.
-    double filter_offset(double kept) const;
     /// Whether every pair of the row is out of the pair search's reach
     /// (pair_reach of the pair's offset; the reach is monotone in it).
     bool out_of_reach(const Screen        &screen,
@@ -605,9 +611,6 @@ namespace coshell::contact
                                 const Points4       &points,
                                 const Displacements &moves,
                                 double               offset) const;
-    /// True when steps are filtered: the barrier, or the penalty with a
-    /// step filter.
-    bool   filters_steps() const;
     double obstacle_filter_fraction(const Motion     &motion,
                                     unsigned int      o,
                                     const Candidates &c,
