@@ -36,7 +36,8 @@ namespace coshell::solvers
     constexpr unsigned int armijo_halvings = 10;
     /// Below this many round-offs of the energy, a decrease cannot be
     /// judged: the correction is taken whole.
-    constexpr double energy_round_off = 1e3 * 2.2e-16;
+    constexpr double energy_round_off =
+        1e3 * std::numeric_limits<double>::epsilon();
 
     /// Why a step that ends with a prescribed move pending has failed.
     const std::string pending_move_note =
@@ -315,19 +316,19 @@ namespace coshell::solvers
 
   /// Armijo's backtracking on the problem's energy: the whole correction,
   /// then halves, until the energy drops by at least armijo_decrease of
-  /// the linear model's prediction s du.r. As line_search(): rejected
+  /// the linear model's prediction s du.r ('slope_at_zero' = du.r). As
+  /// line_search(): rejected
   /// trials are undone, an accepted one is left applied with its residual
   /// in 'trial_residual' (and its energy in 'trial_energy'), the first
   /// trial assembles 'tangent' if given.
   Newton::LineSearch Newton::armijo_search(base::NonlinearProblem &problem,
                                            const double          energy_at_zero,
-                                           const Vector<double> &residual,
+                                           const double          slope_at_zero,
                                            const Vector<double> &correction,
                                            Vector<double>       &trial_residual,
                                            base::TangentMatrix  *tangent,
                                            double &trial_energy) const
   {
-    const double   slope_at_zero = correction * residual;
     Vector<double> step(correction.size());
     double         a = 1;
     for (unsigned int trial = 0; trial <= armijo_halvings; ++trial, a *= 0.5)
@@ -426,8 +427,8 @@ namespace coshell::solvers
           return {};
         double     trial_energy = 0;
         LineSearch search =
-            armijo_search(problem, energy, it.residual, correction,
-                          it.trial_residual, tangent, trial_energy);
+            armijo_search(problem, energy, slope, correction, it.trial_residual,
+                          tangent, trial_energy);
         if (search.accepted)
           it.energy = trial_energy;
         return search;

@@ -1,5 +1,6 @@
 // The physics-free Newton solver and step controller on small algebraic
-// problems with known solutions.
+// problems with known solutions; the line searches (the energy slope and
+// Armijo's on the potential) and the tolerances on the correction.
 
 #include <coshell/solvers/newton.h>
 
@@ -86,6 +87,27 @@ namespace
       return scale_;
     }
 
+    /// The potential whose negative gradient r is, when 'has_energy'.
+    double energy() override
+    {
+      return has_energy ? potential() : NonlinearProblem::energy();
+    }
+
+    /// sum_i (x_i^2 / 2 + c x_i^4 / 4 - load_i x_i) + coupling / 2
+    /// sum_{i<j} (x_i - x_j)^2.
+    double potential() const
+    {
+      double value = 0;
+      for (unsigned int i = 0; i < x_.size(); ++i)
+      {
+        value += 0.5 * x_[i] * x_[i] + 0.25 * c_ * std::pow(x_[i], 4) -
+                 load_[i] * x_[i];
+        for (unsigned int j = i + 1; j < x_.size(); ++j)
+          value += 0.5 * coupling * (x_[i] - x_[j]) * (x_[i] - x_[j]);
+      }
+      return value;
+    }
+
     bool prescribed_increment_pending() const override
     {
       return fixed_ >= 0 && std::abs(x_[fixed_] - prescribed_) > 1e-14;
@@ -131,6 +153,7 @@ namespace
       return x_;
     }
 
+    bool         has_energy          = false;
     double       coupling            = 0;
     unsigned int evaluations         = 0;
     unsigned int tangent_evaluations = 0;
@@ -298,6 +321,77 @@ TEST(Newton, LineSearchEvaluatesEachScaleOnce)
   EXPECT_THROW(Newton(parameters, umfpack()).solve(problem), NewtonFailure);
   EXPECT_EQ(problem.evaluations, 3u);
   EXPECT_NEAR(problem.x()[0], 0.03, 1e-15);
+}
+
+// Armijo's line search on the potential: from x = 0 the whole Newton
+// correction of the stiffening spring overshoots (tangent 1, load 50), so
+// the search halves it; every accepted iterate lowers the potential, and
+// Newton ends at the root.
+TEST(Newton, ArmijoLineSearchLowersTheEnergyAtEveryCorrection)
+{
+  CubicSprings problem({50.0, -20.0}, 1.0);
+  problem.has_energy = true;
+  problem.coupling   = 2;
+  NewtonParameters parameters;
+  parameters.line_search        = true;
+  parameters.line_search_rule   = NewtonParameters::LineSearchRule::armijo;
+  parameters.residual_tolerance = 1e-12;
+  std::vector<double> energies{problem.potential()};
+  Newton(parameters, umfpack())
+      .solve(problem,
+             [&](const NewtonIteration &record)
+             {
+               if (record.correction_norm > 0)
+                 energies.push_back(problem.potential());
+             });
+  ASSERT_GE(energies.size(), 3u);
+  for (unsigned int k = 1; k < energies.size(); ++k)
+    EXPECT_LE(energies[k], energies[k - 1]) << "correction " << k;
+  // The root of both rows: -(x_i + x_i^3 + 2 (x_i - x_j)) + load_i = 0.
+  const double x0 = problem.x()[0], x1 = problem.x()[1];
+  EXPECT_NEAR(50 - (x0 + std::pow(x0, 3) + 2 * (x0 - x1)), 0, 1e-9);
+  EXPECT_NEAR(-20 - (x1 + std::pow(x1, 3) + 2 * (x1 - x0)), 0, 1e-9);
+}
+
+// Without an energy (energy() is NaN) the Armijo rule falls back to the
+// energy-slope search: the same iterates to the bit.
+TEST(Newton, ArmijoWithoutAnEnergyIsTheSlopeSearch)
+{
+  CubicSprings     slope({50.0}, 1.0), armijo({50.0}, 1.0);
+  NewtonParameters parameters;
+  parameters.line_search        = true;
+  const unsigned int iterations = Newton(parameters, umfpack()).solve(slope);
+  parameters.line_search_rule   = NewtonParameters::LineSearchRule::armijo;
+  EXPECT_EQ(Newton(parameters, umfpack()).solve(armijo), iterations);
+  EXPECT_EQ(armijo.x()[0], slope.x()[0]);
+  EXPECT_EQ(armijo.evaluations, slope.evaluations);
+}
+
+// The velocity tolerance is a correction tolerance of tol * dt: a solve
+// with 'Velocity tolerance' v and time step h takes the same corrections
+// to the same iterate as one with 'Correction tolerance' v h, stops
+// earlier than the residual test alone, and is not used in statics (no
+// time step).
+TEST(Newton, VelocityToleranceIsACorrectionToleranceTimesTheStep)
+{
+  const double     v = 0.2, h = 0.01;
+  NewtonParameters parameters;
+  parameters.residual_tolerance = 1e-14;
+  CubicSprings       plain({2.0, -5.0}, 0.5);
+  const unsigned int full = Newton(parameters, umfpack()).solve(plain);
+
+  CubicSprings by_length({2.0, -5.0}, 0.5), by_velocity({2.0, -5.0}, 0.5),
+      in_statics({2.0, -5.0}, 0.5);
+  parameters.correction_tolerance = v * h;
+  const unsigned int length_iterations =
+      Newton(parameters, umfpack()).solve(by_length);
+  parameters.correction_tolerance = 0;
+  parameters.velocity_tolerance   = v;
+  EXPECT_EQ(Newton(parameters, umfpack()).solve(by_velocity, {}, h),
+            length_iterations);
+  EXPECT_EQ(by_velocity.x()[0], by_length.x()[0]);
+  EXPECT_LT(length_iterations, full);
+  EXPECT_EQ(Newton(parameters, umfpack()).solve(in_statics), full);
 }
 
 TEST(Newton, FailureMessageNamesAnIndefiniteTangent)

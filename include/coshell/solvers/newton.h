@@ -129,7 +129,7 @@ namespace coshell::solvers
                            base::TangentMatrix          *tangent) const;
     LineSearch armijo_search(base::NonlinearProblem       &problem,
                              double                        energy_at_zero,
-                             const dealii::Vector<double> &residual,
+                             double                        slope_at_zero,
                              const dealii::Vector<double> &correction,
                              dealii::Vector<double>       &trial_residual,
                              base::TangentMatrix          *tangent,
