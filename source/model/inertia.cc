@@ -588,6 +588,40 @@ namespace coshell::model
     }
   } // namespace
 
+  Inertia::CellRates Inertia::mass_times(const CellIterator &cell,
+                                         const ShellState   &state,
+                                         const CellRates    &rates) const
+  {
+    CellRates product{};
+    if (sparse_cell_matrices(state))
+    {
+      SparseCellMatrix(mass_entries(cell)).add_times(1, rates, product);
+      return product;
+    }
+    FullMatrix<double> &mass = cell_matrices().mass;
+    element::shell_mass(model_.triangle(cell), mass_properties(cell), mass);
+    return times(mass, rates);
+  }
+
+  Inertia::CellRates Inertia::damping_times(const CellIterator &cell,
+                                            const ShellState   &state,
+                                            const CellRates    &rates) const
+  {
+    CellMatrices &matrices = cell_matrices();
+    const auto    current  = current_triangle(model_, cell, state);
+    CellRates     product{};
+    if (sparse_cell_matrices(state))
+    {
+      sparse_damping(parameters_, current, mass_entries(cell), matrices.drag)
+          .add_times(1, rates, product);
+      return product;
+    }
+    element::shell_mass(model_.triangle(cell), mass_properties(cell),
+                        matrices.mass);
+    damping(cell, current, matrices.mass, matrices.damping, matrices.drag);
+    return times(matrices.damping, rates);
+  }
+
   double Inertia::cell_energy(const CellIterator    &cell,
                               const EvaluationPoint &point) const
   {
@@ -597,54 +631,24 @@ namespace coshell::model
       return 0;
     const ShellState &state = point.state;
     const auto acceleration = spatial_rates(cell, state, Rate::acceleration);
-    const bool damped       = parameters_.damped() && c_v > 0;
-    const auto velocity = damped ? spatial_rates(cell, state, Rate::velocity)
-                                 : decltype(acceleration){};
-    std::array<double, element::shell_dofs> Ma{}, Cv{};
-    CellMatrices                           &matrices = cell_matrices();
-    const auto current = current_triangle(model_, cell, state);
-    if (sparse_cell_matrices(state))
+    double     energy =
+        dot(acceleration, mass_times(cell, state, acceleration)) / (2 * c_a);
+    if (parameters_.damped() && c_v > 0)
     {
-      SparseCellMatrix(mass_entries(cell)).add_times(1, acceleration, Ma);
-      if (damped)
-        sparse_damping(parameters_, current, mass_entries(cell), matrices.drag)
-            .add_times(1, velocity, Cv);
+      const auto velocity = spatial_rates(cell, state, Rate::velocity);
+      energy += dot(velocity, damping_times(cell, state, velocity)) / (2 * c_v);
     }
-    else
-    {
-      element::shell_mass(model_.triangle(cell), mass_properties(cell),
-                          matrices.mass);
-      Ma = times(matrices.mass, acceleration);
-      if (damped)
-      {
-        damping(cell, current, matrices.mass, matrices.damping, matrices.drag);
-        Cv = times(matrices.damping, velocity);
-      }
-    }
-    return dot(acceleration, Ma) / (2 * c_a) +
-           (damped ? dot(velocity, Cv) / (2 * c_v) : 0);
+    return energy;
   }
 
   KineticMeasures Inertia::measures(const ShellState &state) const
   {
-    KineticMeasures     result;
-    FullMatrix<double> &mass   = cell_matrices().mass;
-    const bool          sparse = sparse_cell_matrices(state);
+    KineticMeasures result;
     for (const auto &cell : model_.dof_handler().active_cell_iterators())
     {
       const auto velocity = spatial_rates(cell, state, Rate::velocity);
-      std::array<double, element::shell_dofs> momentum{};
-      if (sparse)
-        SparseCellMatrix(mass_entries(cell)).add_times(1, velocity, momentum);
-      else
-      {
-        element::shell_mass(model_.triangle(cell), mass_properties(cell), mass);
-        for (unsigned int i = 0; i < element::shell_dofs; ++i)
-          for (unsigned int j = 0; j < element::shell_dofs; ++j)
-            momentum[i] += mass(i, j) * velocity[j];
-      }
       add_kinetic_measures(current_triangle(model_, cell, state), velocity,
-                           momentum, result);
+                           mass_times(cell, state, velocity), result);
     }
     return result;
   }

@@ -102,6 +102,16 @@ namespace coshell::model
       velocity,
       acceleration
     };
+    using CellRates = std::array<double, element::shell_dofs>;
+    /// The cell's mass and damping matrices times 'rates' (the layout of
+    /// spatial_rates()), with only their nonzero entries where
+    /// sparse_cell_matrices() holds.
+    CellRates mass_times(const CellIterator &cell,
+                         const ShellState   &state,
+                         const CellRates    &rates) const;
+    CellRates damping_times(const CellIterator &cell,
+                            const ShellState   &state,
+                            const CellRates    &rates) const;
     /// The cell's velocities or accelerations in global axes (rotations
     /// spatial).
     std::array<double, element::shell_dofs> spatial_rates(
