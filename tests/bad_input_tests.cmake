@@ -70,3 +70,15 @@ coshell_bad_input_test(load_on_unstiffened_dof
   "a load acts on DoF 12, which no element stiffens"
   ${plate} --set "Element/Membrane element=off"
   --set "Loads/Point forces=0.5 0.5 0 : 1 0 0" --set "Mesh/Refinement levels=1")
+
+# Element/Thickness stretch needs the co-rotational CST shell; Face
+# pressure needs the stretch; an incompressible law has no thick membrane.
+set(squeeze ${COSHELL_PRM}/thickness/plate_squeeze_frictionless.prm)
+coshell_bad_input_test(thickness_stretch_linear "Element: Thickness stretch needs Formulation = corotational"
+  ${squeeze} --set "Element/Formulation=linear")
+coshell_bad_input_test(thickness_stretch_andes "Element: Thickness stretch needs Membrane element = cst"
+  ${squeeze} --set "Element/Membrane element=andes")
+coshell_bad_input_test(face_pressure_without_stretch "Element: Face pressure needs Thickness stretch = true"
+  ${squeeze} --set "Element/Thickness stretch=false")
+coshell_bad_input_test(thickness_stretch_incompressible "Material: Poisson's ratio = 0.5 is outside"
+  ${squeeze} --set "Material/Poisson's ratio=0.5")

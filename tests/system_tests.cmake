@@ -41,6 +41,7 @@ include(${CMAKE_CURRENT_SOURCE_DIR}/dynamics_tests.cmake)
 include(${CMAKE_CURRENT_SOURCE_DIR}/contact_tests.cmake)
 include(${CMAKE_CURRENT_SOURCE_DIR}/iol_tests.cmake)
 include(${CMAKE_CURRENT_SOURCE_DIR}/mpi_tests.cmake)
+include(${CMAKE_CURRENT_SOURCE_DIR}/thickness_tests.cmake)
 
 # Output/Format = hdf5: HDF5 files with duplicate vertices merged and the
 # solution.xdmf index, read back with h5py: a static plate (its centre

@@ -104,9 +104,8 @@ namespace coshell::contact
                          bool         shell_vertex_side,
                          unsigned int shell) const
   {
-    const double thickness = shell_vertex_side
-                                 ? model_.vertex_thickness(shell)
-                                 : shell_triangle_thickness_[shell];
+    const double thickness =
+        shell_vertex_side ? vertex_thickness(shell) : triangle_thickness(shell);
     return 0.5 * thickness + parameters_.obstacles[obstacle].offset;
   }
 
@@ -122,7 +121,8 @@ namespace coshell::contact
 
   double Contact::largest_offset(unsigned int obstacle) const
   {
-    return 0.5 * largest_thickness_ + parameters_.obstacles[obstacle].offset;
+    return 0.5 * largest_current_thickness() +
+           parameters_.obstacles[obstacle].offset;
   }
 
   double Contact::reach(unsigned int obstacle) const
@@ -335,8 +335,9 @@ namespace coshell::contact
     for (const unsigned v : shell_vertices_)
       for (unsigned int c = 0; c < 3; ++c)
         dx[v][c] = correction[model_.vertex_dofs(v)[c]];
-    return filter_fraction({x, &dx, invalid_obstacle, nullptr},
-                           invalid_obstacle);
+    return std::min(
+        filter_fraction({x, &dx, invalid_obstacle, nullptr}, invalid_obstacle),
+        thickening_fraction(correction));
   }
 
   /// Moves each obstacle towards its position at the evaluation time, as
@@ -393,6 +394,7 @@ namespace coshell::contact
     const Stopwatch watch(timing_.detection);
     set_target_time(time);
     positions_ = shell_positions(state);
+    update_stretches(state);
     if (reuse_trial_detection())
       return;
     // Lists made where the shell is now serve the obstacles' step filter
@@ -537,7 +539,8 @@ namespace coshell::contact
     saved_           = current_;
     positions_       = shell_positions(state);
     saved_positions_ = positions_;
-    saved_time_      = time;
+    update_stretches(state);
+    saved_time_ = time;
     find_pairs(positions_);
     for (const Pair &pair : pairs_)
     {

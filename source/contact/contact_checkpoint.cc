@@ -101,6 +101,7 @@ namespace coshell::contact
     }
     positions_       = shell_positions(state);
     saved_positions_ = positions_;
+    update_stretches(state);
     forget_gaps();
     projecting_this_step_ = false;
   }

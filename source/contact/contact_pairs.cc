@@ -344,7 +344,7 @@ namespace coshell::contact
     for (unsigned int o = 0; o < current_.size(); ++o)
       largest = std::max(largest, reach(o));
     if (parameters_.self_contact)
-      largest = std::max(largest, largest_thickness_ +
+      largest = std::max(largest, largest_current_thickness() +
                                       pair_potential_->activation_distance());
     return largest;
   }
@@ -502,6 +502,9 @@ namespace coshell::contact
       if (pending_ && !pair.self)
         anticipate_obstacle(pair, energy, block);
       sink(block);
+      if (!stretch_.empty())
+        add_stretch_terms(pair, points, s, weight, phi, energy, block, sink,
+                          with_tangent);
     }
     add_friction_terms(sink, with_tangent);
     timing_.pair_terms +=
@@ -514,12 +517,10 @@ namespace coshell::contact
   /// move, -K_so dX (as an inhomogeneous constraint does in deal.II's
   /// step-44), so the next Newton correction already moves the shell out
   /// of the obstacle's way; the term vanishes once the obstacle is there.
-  void Contact::anticipate_obstacle(const Pair       &pair,
-                                    const PairEnergy &energy,
-                                    model::DofBlock  &block) const
+  std::array<Tensor<1, 3>, 4>
+  Contact::remaining_obstacle_moves(const Pair &pair) const
   {
-    const unsigned int o = pair.obstacle;
-    // The obstacle's points among the four, and their remaining moves.
+    const unsigned int          o = pair.obstacle;
     std::array<Tensor<1, 3>, 4> remaining;
     const auto                 &triangles = parameters_.obstacles[o].triangles;
     for (unsigned int k = 0; k < 4; ++k)
@@ -532,7 +533,15 @@ namespace coshell::contact
                                    : pair.other;
       remaining[k] = target_[o][v] - current_[o][v];
     }
-    const auto shell = shell_coordinates(pair);
+    return remaining;
+  }
+
+  void Contact::anticipate_obstacle(const Pair       &pair,
+                                    const PairEnergy &energy,
+                                    model::DofBlock  &block) const
+  {
+    const auto remaining = remaining_obstacle_moves(pair);
+    const auto shell     = shell_coordinates(pair);
     for (unsigned int i = shell.first; i < shell.last; ++i)
       for (unsigned int j = 0; j < 12; ++j)
         if (j < shell.first || j >= shell.last)

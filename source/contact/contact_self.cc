@@ -101,25 +101,26 @@ namespace coshell::contact
     double sum = 0;
     for (const unsigned int edge : {e, f})
       for (const unsigned int v : shell_edges_[edge])
-        sum += model_.vertex_thickness(v);
+        sum += vertex_thickness(v);
     return sum / 4; // the mean of the two edges' half thicknesses, summed
   }
 
   double Contact::self_reach(unsigned int v, double activation) const
   {
-    return 0.5 * (model_.vertex_thickness(v) + largest_thickness_) + activation;
+    return 0.5 * (vertex_thickness(v) + largest_current_thickness()) +
+           activation;
   }
 
   double Contact::self_edge_reach(unsigned int e, double activation) const
   {
     const auto [a, b] = shell_edges_[e];
-    return 0.25 * (model_.vertex_thickness(a) + model_.vertex_thickness(b)) +
-           0.5 * largest_thickness_ + activation;
+    return 0.25 * (vertex_thickness(a) + vertex_thickness(b)) +
+           0.5 * largest_current_thickness() + activation;
   }
 
   double Contact::self_offset(unsigned int v, unsigned int t) const
   {
-    return 0.5 * (model_.vertex_thickness(v) + shell_triangle_thickness_[t]);
+    return 0.5 * (vertex_thickness(v) + triangle_thickness(t));
   }
 
   const std::vector<Point<3>> &Contact::other_side(const Pair &pair) const

@@ -2,6 +2,7 @@
 
 #include <coshell/model/external_loads.h>
 #include <coshell/model/internal_force.h>
+#include <coshell/model/thickness_stretch.h>
 
 namespace coshell::driver
 {
@@ -22,6 +23,16 @@ namespace coshell::driver
       return context.contact != nullptr;
     }
 
+    bool has_thickness_stretch(const StageContext &context)
+    {
+      return context.model.has_thickness_stretch();
+    }
+
+    bool has_face_pressure(const StageContext &context)
+    {
+      return context.model.element_parameters().face_pressure != 0;
+    }
+
     std::unique_ptr<model::Contribution>
     internal_force(const ContributionParameters &parameters,
                    const StageContext           &context)
@@ -31,6 +42,20 @@ namespace coshell::driver
           context.model, parameters.element.formulation, tangent.tangent(),
           tangent.extrapolated_geometric_stiffness(is_dynamic(context)),
           tangent.exact_tangent_after_failure());
+    }
+
+    std::unique_ptr<model::Contribution>
+    thick_membrane(const ContributionParameters &, const StageContext &context)
+    {
+      return std::make_unique<model::ThickMembraneForce>(context.model);
+    }
+
+    std::unique_ptr<model::Contribution>
+    face_pressure(const ContributionParameters &parameters,
+                  const StageContext           &context)
+    {
+      return std::make_unique<model::FacePressure>(
+          context.model, parameters.element.face_pressure);
     }
 
     std::unique_ptr<model::Contribution>
@@ -62,7 +87,9 @@ namespace coshell::driver
   {
     static const std::vector<ContributionKind> kinds = {
         {"internal force", always, internal_force},
+        {"thick membrane", has_thickness_stretch, thick_membrane},
         {"external loads", always, external_loads},
+        {"face pressure", has_face_pressure, face_pressure},
         {"inertia", is_dynamic, inertia},
         {"contact", has_contact, contact_forces}};
     return kinds;

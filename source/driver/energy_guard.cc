@@ -2,6 +2,7 @@
 
 #include <coshell/model/inertia.h>
 #include <coshell/model/internal_force.h>
+#include <coshell/model/thickness_stretch.h>
 
 #include <algorithm>
 #include <cmath>
@@ -34,8 +35,7 @@ namespace coshell::driver
   double EnergyGuard::mechanical_energy()
   {
     const auto &state = problem_.state();
-    strain_energy_ =
-        problem_.find<model::InternalForce>()->strain_energy(state);
+    strain_energy_    = model::stored_energy(problem_, state);
     return problem_.find<model::Inertia>()->measures(state).kinetic_energy +
            strain_energy_;
   }

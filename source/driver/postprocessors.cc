@@ -4,6 +4,7 @@
 #include <coshell/base/csv_file.h>
 #include <coshell/io/json.h>
 #include <coshell/model/inertia.h>
+#include <coshell/model/thickness_stretch.h>
 
 #include <algorithm>
 #include <cctype>
@@ -181,7 +182,7 @@ namespace coshell::driver
     const auto   kinetic  = problem.find<model::Inertia>()->measures(state);
     const double strain_energy = known_strain_energy
                                      ? *known_strain_energy
-                                     : internal->strain_energy(state);
+                                     : model::stored_energy(problem, state);
     result.qoi = step_quantities(quantities, problem.model(), state, internal);
     std::vector<double> row = {double(out.step),
                                record.time,

@@ -19,6 +19,7 @@
 #include <coshell/model/shell_model.h>
 #include <coshell/model/shell_problem.h>
 #include <coshell/model/shell_state.h>
+#include <coshell/model/thickness_stretch.h>
 #include <coshell/solvers/modal_analysis.h>
 
 #include <algorithm>
@@ -512,7 +513,7 @@ namespace coshell::driver
     else if (std::isnan(run.result.initial_total_energy))
       run.result.initial_total_energy =
           inertia->measures(state).kinetic_energy +
-          internal->strain_energy(state);
+          model::stored_energy(problem, state);
     if (time_integration_.energy_growth_limit() > 0)
       run.guard.emplace(problem, out.contact, out.generalized_force,
                         out.contact_force,

@@ -61,7 +61,9 @@ namespace coshell::element
     {
       if (*options.membrane == MembraneElement::andes)
         return andes_stiffness(triangle, material, options.andes_scales);
-      FullMatrix<double> membrane = cst_stiffness(triangle, material);
+      FullMatrix<double> membrane = options.membrane_in_plane
+                                        ? cst_stiffness(triangle, material)
+                                        : FullMatrix<double>(9, 9);
       add_drilling_penalty(triangle, material, options.drilling_factor,
                            membrane);
       return membrane;
@@ -72,10 +74,12 @@ namespace coshell::element
                                    const ShellMaterial         &material,
                                    const MembraneDisplacements &dofs)
     {
-      return *options.membrane == MembraneElement::andes
-                 ? andes_membrane_forces(triangle, material, dofs,
-                                         options.andes_scales)
-                 : cst_membrane_forces(triangle, material, dofs);
+      if (*options.membrane == MembraneElement::andes)
+        return andes_membrane_forces(triangle, material, dofs,
+                                     options.andes_scales);
+      if (!options.membrane_in_plane)
+        return {};
+      return cst_membrane_forces(triangle, material, dofs);
     }
   } // namespace
 

@@ -160,8 +160,10 @@ namespace coshell::io
   {
     std::vector<std::string> names(3, "displacement");
     names.insert(names.end(), 3, "rotation");
+    // DataOut knows the FESystem's DoFs only; the thickness stretches
+    // enter as the cells' current thickness.
     data_out.add_data_vector(
-        solution, names, DataOut<2, 3>::type_dof_data,
+        model.fe_part(solution), names, DataOut<2, 3>::type_dof_data,
         std::vector<DataComponentInterpretation::DataComponentInterpretation>(
             6, DataComponentInterpretation::component_is_part_of_vector));
     for (const DofField &field : fields)
@@ -173,7 +175,7 @@ namespace coshell::io
             std::count(field.names.begin(), field.names.end(), component) > 1
                 ? DataComponentInterpretation::component_is_part_of_vector
                 : DataComponentInterpretation::component_is_scalar);
-      data_out.add_data_vector(*field.values, field.names,
+      data_out.add_data_vector(model.fe_part(*field.values), field.names,
                                DataOut<2, 3>::type_dof_data, kinds);
     }
     std::vector<Tensor<2, 3>> membrane, bending;
@@ -185,6 +187,15 @@ namespace coshell::io
     add_tensor_fields(data_out, membrane, "N");
     add_tensor_fields(data_out, bending, "M");
     add_cell_scalars(data_out, model, resultants);
+    if (model.has_thickness_stretch())
+    {
+      Vector<double> thickness(model.surface().n_active_cells());
+      for (const auto &cell : model.dof_handler().active_cell_iterators())
+        thickness[cell->active_cell_index()] =
+            model.current_thickness(cell, solution);
+      data_out.add_data_vector(thickness, "current_thickness",
+                               DataOut<2, 3>::type_cell_data);
+    }
   }
 
   std::string

@@ -1,6 +1,8 @@
 #include <coshell/base/expressions.h>
 #include <coshell/model/element_parameters.h>
 
+#include <cmath>
+
 #include <deal.II/base/utilities.h>
 
 #include <cstdlib>
@@ -87,6 +89,22 @@ namespace coshell::model
           "weight alpha_b = 3/2 of the andes membrane's basic stiffness: "
           "alpha_b / (1 + c_b l^2 phi^2 / h^2) per triangle. 0: alpha_b = 3/2 "
           "everywhere (doc/theory.md, section 14). Unit: dimensionless.");
+      prm.declare_entry(
+          "Thickness stretch", "false", Patterns::Bool(),
+          "Whether the thickness may change: each vertex gets one more "
+          "unknown, its thickness stretch h/h0, and the membrane becomes the "
+          "thick membrane, CalculiX's compressible neo-Hookean law on the "
+          "in-plane stretch and the thickness stretch (doc/theory.md, "
+          "section 21). Needs Formulation = corotational and Membrane "
+          "element = cst, whose drilling penalty stays, and one MPI rank. "
+          "Bending and the contact offsets follow the current thickness. "
+          "Off: no unknown and no cost.");
+      prm.declare_entry(
+          "Face pressure", "0", Patterns::Double(),
+          "Nominal pressure squeezing the shell through its thickness, force "
+          "per reference area on both faces, times the load factor (a "
+          "frictionless squeeze between plates). Needs Thickness stretch. "
+          "Unit: MPa.");
       prm.leave_subsection();
     }
   } // namespace
@@ -147,11 +165,39 @@ namespace coshell::model
     andes_curvature_scaling = prm.get_double("ANDES curvature scaling");
     andes_basic_drilling_scaling =
         prm.get_double("ANDES basic drilling scaling");
+    thickness_stretch = prm.get_bool("Thickness stretch");
+    face_pressure     = prm.get_double("Face pressure");
     prm.leave_subsection();
+    check_thickness_stretch();
     if (!options.membrane && !options.bending)
       throw std::invalid_argument("subsection Element: Membrane element and "
                                   "Bending element are both off; nothing "
                                   "would resist any load");
+  }
+
+  void ElementParameters::check_thickness_stretch()
+  {
+    if (!thickness_stretch)
+    {
+      if (face_pressure != 0)
+        throw std::invalid_argument(
+            "subsection Element: Face pressure needs Thickness stretch = "
+            "true (a shell of fixed thickness has no through-thickness "
+            "unknown to push)");
+      return;
+    }
+    if (formulation != Formulation::corotational)
+      throw std::invalid_argument(
+          "subsection Element: Thickness stretch needs Formulation = "
+          "corotational (the thick membrane is nonlinear)");
+    if (options.membrane != element::MembraneElement::cst)
+      throw std::invalid_argument(
+          "subsection Element: Thickness stretch needs Membrane element = "
+          "cst (the thick membrane replaces the CST's in-plane part)");
+    if (!std::isfinite(face_pressure))
+      throw std::invalid_argument(
+          "subsection Element: Face pressure must be finite");
+    options.membrane_in_plane = false;
   }
 
   std::string ElementParameters::formulation_name() const
@@ -170,6 +216,6 @@ namespace coshell::model
       bending = *options.bending == element::BendingElement::dkt
                     ? "dkt"
                     : "przemieniecki";
-    return membrane + "+" + bending;
+    return membrane + "+" + bending + (thickness_stretch ? "+stretch" : "");
   }
 } // namespace coshell::model

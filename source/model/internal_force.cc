@@ -78,9 +78,8 @@ namespace coshell::model
            tangent_ != element::CorotationalTangent::consistent;
   }
 
-  element::NodalRotations
-  InternalForce::nodal_rotations(const CellIterator &cell,
-                                 const ShellState   &state) const
+  element::NodalRotations nodal_rotations(const CellIterator &cell,
+                                          const ShellState   &state)
   {
     return {{state.rotation(cell->vertex_index(0)),
              state.rotation(cell->vertex_index(1)),

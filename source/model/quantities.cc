@@ -1,5 +1,7 @@
 #include <coshell/model/quantities.h>
 
+#include <limits>
+
 #include <coshell/base/constants.h>
 
 #include <deal.II/base/symmetric_tensor.h>
@@ -331,7 +333,31 @@ namespace coshell::model
     }
     for (const auto &pose : region_poses_)
       add_region_pose(pose, model, solution, values);
+    if (model.has_thickness_stretch())
+      add_thickness_extremes(model, solution, values);
     return values;
+  }
+
+  void QuantitiesOfInterest::add_thickness_extremes(
+      const ShellModel              &model,
+      const Vector<double>          &solution,
+      std::map<std::string, double> &values)
+  {
+    double smallest_stretch = std::numeric_limits<double>::max();
+    double largest_stretch  = 0;
+    for (unsigned int v = 0; v < model.surface().n_vertices(); ++v)
+      if (model.vertex_is_used(v))
+      {
+        const double stretch = 1 + solution[model.thickness_dof(v)];
+        smallest_stretch     = std::min(smallest_stretch, stretch);
+        largest_stretch      = std::max(largest_stretch, stretch);
+      }
+    double thinnest = std::numeric_limits<double>::max();
+    for (const auto &cell : model.dof_handler().active_cell_iterators())
+      thinnest = std::min(thinnest, model.current_thickness(cell, solution));
+    values["min_thickness_stretch"] = smallest_stretch;
+    values["max_thickness_stretch"] = largest_stretch;
+    values["min_thickness"]         = thinnest;
   }
 
   const std::map<std::string, double> &QuantitiesOfInterest::references() const

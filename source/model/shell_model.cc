@@ -56,6 +56,7 @@ namespace coshell::model
     dof_handler_.distribute_dofs(fe_);
     number_dofs_by_rank();
     number_vertex_dofs();
+    number_thickness_dofs();
     assign_cell_materials();
     assign_cell_options();
   }
@@ -250,6 +251,61 @@ namespace coshell::model
           vertex_dofs_[cell->vertex_index(v)][c] = cell->vertex_dof_index(v, c);
   }
 
+  void ShellModel::number_thickness_dofs()
+  {
+    if (!element_.thickness_stretch)
+      return;
+    if (base::distributed())
+      throw std::invalid_argument(
+          "Element/Thickness stretch runs on one MPI rank only (its DoFs "
+          "come after every rank's range)");
+    thickness_dofs_.assign(surface_.n_vertices(), numbers::invalid_dof_index);
+    global_dof_index next = dof_handler_.n_dofs();
+    for (unsigned int v = 0; v < surface_.n_vertices(); ++v)
+      if (vertex_is_used(v))
+        thickness_dofs_[v] = next++;
+    locally_owned_dofs_ = complete_index_set(next);
+  }
+
+  void ShellModel::add_thickness_sparsity(
+      const AffineConstraints<double> &constraints,
+      DynamicSparsityPattern          &dsp) const
+  {
+    std::vector<global_dof_index> dofs(element::shell_dofs);
+    for (const auto &cell : dof_handler_.active_cell_iterators())
+    {
+      cell->get_dof_indices(dofs);
+      dofs.resize(element::shell_dofs);
+      for (unsigned int v = 0; v < 3; ++v)
+        dofs.push_back(thickness_dofs_[cell->vertex_index(v)]);
+      constraints.add_entries_local_to_global(dofs, dsp, false);
+    }
+  }
+
+  global_dof_index ShellModel::n_fe_dofs() const
+  {
+    return dof_handler_.n_dofs();
+  }
+
+  double ShellModel::current_thickness(const CellIterator   &cell,
+                                       const Vector<double> &values) const
+  {
+    const double reference = material(cell).thickness;
+    if (!has_thickness_stretch())
+      return reference;
+    double mean_stretch = 1.0;
+    for (unsigned int v = 0; v < 3; ++v)
+      mean_stretch += values[thickness_dofs_[cell->vertex_index(v)]] / 3.0;
+    return reference * mean_stretch;
+  }
+
+  Vector<double> ShellModel::fe_part(const Vector<double> &v) const
+  {
+    if (!has_thickness_stretch() || v.size() == 0)
+      return v;
+    return Vector<double>(v.begin(), v.begin() + n_fe_dofs());
+  }
+
   const DoFHandler<2, 3> &ShellModel::dof_handler() const
   {
     return dof_handler_;
@@ -267,7 +323,7 @@ namespace coshell::model
 
   global_dof_index ShellModel::n_dofs() const
   {
-    return dof_handler_.n_dofs();
+    return locally_owned_dofs_.size();
   }
 
   bool ShellModel::vertex_is_used(unsigned int v) const
@@ -279,11 +335,18 @@ namespace coshell::model
   {
     if (dofs.size() == 0)
       return {};
-    Vector<double> by_vertex(dofs_per_vertex * vertex_dofs_.size());
-    for (unsigned int v = 0; v < vertex_dofs_.size(); ++v)
+    const unsigned int n_vertices = vertex_dofs_.size();
+    Vector<double>     by_vertex((dofs_per_vertex + thickness_fields()) *
+                                 n_vertices);
+    for (unsigned int v = 0; v < n_vertices; ++v)
       if (vertex_is_used(v))
+      {
         for (unsigned int c = 0; c < dofs_per_vertex; ++c)
           by_vertex[dofs_per_vertex * v + c] = dofs[vertex_dofs_[v][c]];
+        if (has_thickness_stretch())
+          by_vertex[dofs_per_vertex * n_vertices + v] =
+              dofs[thickness_dofs_[v]];
+      }
     return by_vertex;
   }
 
@@ -292,17 +355,24 @@ namespace coshell::model
   {
     if (by_vertex.size() == 0)
       return {};
-    if (by_vertex.size() != dofs_per_vertex * vertex_dofs_.size())
+    const unsigned int n_vertices = vertex_dofs_.size();
+    const unsigned int per_vertex = dofs_per_vertex + thickness_fields();
+    if (by_vertex.size() != per_vertex * n_vertices)
       throw std::invalid_argument(
-          "it holds " + std::to_string(by_vertex.size() / dofs_per_vertex) +
-          " vertices, the scene's mesh has " +
-          std::to_string(vertex_dofs_.size()) +
-          " (another mesh or refinement)");
+          "it holds " + std::to_string(by_vertex.size() / per_vertex) +
+          " vertices, the scene's mesh has " + std::to_string(n_vertices) +
+          " (another mesh or refinement, or Element/Thickness stretch "
+          "switched)");
     Vector<double> dofs(n_dofs());
-    for (unsigned int v = 0; v < vertex_dofs_.size(); ++v)
+    for (unsigned int v = 0; v < n_vertices; ++v)
       if (vertex_is_used(v))
+      {
         for (unsigned int c = 0; c < dofs_per_vertex; ++c)
           dofs[vertex_dofs_[v][c]] = by_vertex[dofs_per_vertex * v + c];
+        if (has_thickness_stretch())
+          dofs[thickness_dofs_[v]] =
+              by_vertex[dofs_per_vertex * n_vertices + v];
+      }
     return dofs;
   }
 
@@ -355,14 +425,27 @@ namespace coshell::model
       const std::vector<std::array<unsigned int, 2>> &coupled) const
   {
     DynamicSparsityPattern dsp(n_dofs());
-    DoFTools::make_sparsity_pattern(dof_handler_, dsp, constraints, false);
+    if (has_thickness_stretch())
+      add_thickness_sparsity(constraints, dsp);
+    else
+      DoFTools::make_sparsity_pattern(dof_handler_, dsp, constraints, false);
     for (const auto &[v, w] : coupled)
-      for (unsigned int i = 0; i < 3; ++i)
-        for (unsigned int j = 0; j < 3; ++j)
+    {
+      const auto coupled_dofs = [this](unsigned int vertex)
+      {
+        std::vector<global_dof_index> dofs(vertex_dofs_[vertex].begin(),
+                                           vertex_dofs_[vertex].begin() + 3);
+        if (has_thickness_stretch())
+          dofs.push_back(thickness_dofs_[vertex]);
+        return dofs;
+      };
+      for (const auto i : coupled_dofs(v))
+        for (const auto j : coupled_dofs(w))
         {
-          dsp.add(vertex_dofs_[v][i], vertex_dofs_[w][j]);
-          dsp.add(vertex_dofs_[w][j], vertex_dofs_[v][i]);
+          dsp.add(i, j);
+          dsp.add(j, i);
         }
+    }
     pattern.copy_from(dsp);
   }
 

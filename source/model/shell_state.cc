@@ -53,6 +53,9 @@ namespace coshell::model
             rotations_[v];
         store_rotation_vector(v);
       }
+    // The thickness stretches, numbered after the FESystem's DoFs, add.
+    for (auto i = model_->n_fe_dofs(); i < values_.size(); ++i)
+      values_[i] += increment[i];
   }
 
   Tensor<1, 3> ShellState::step_rotation(unsigned int v) const

@@ -414,8 +414,13 @@ namespace coshell::contact
     std::vector<dealii::Point<3>>       start_centroids_; ///< at time 0
     double                              potential_ = 0;
     std::vector<double>                 vertex_gap_;
-    dealii::Vector<double>              vertex_force_;
-    double smallest_gap_ = 0, largest_penetration_ = 0;
+    /// Element/Thickness stretch: h / h0 of each shell vertex at the last
+    /// prepare() (empty without it: every offset is the reference's), and
+    /// the largest one (at least 1).
+    std::vector<double>    stretch_;
+    double                 largest_stretch_ = 1;
+    dealii::Vector<double> vertex_force_;
+    double                 smallest_gap_ = 0, largest_penetration_ = 0;
     /// smallest_gap_ by the pairs' side: [0] self contact, [o + 1]
     /// obstacle o.
     std::vector<double> smallest_gap_by_side_;
@@ -452,6 +457,44 @@ namespace coshell::contact
     double automatic_barrier_stiffness(double stiffness_per_area,
                                        double load_pressure) const;
     double offset(const Pair &pair) const;
+    /// The current thickness of shell vertex v and of shell triangle t:
+    /// the reference's times the stretch (of the triangle's vertices, on
+    /// average) with Element/Thickness stretch (contact_thickness.cc).
+    double vertex_thickness(unsigned int v) const;
+    double triangle_thickness(unsigned int t) const;
+    /// largest_thickness_ times the largest stretch: for the reach.
+    double largest_current_thickness() const;
+    /// Reads the stretches of 'state' (nothing without them).
+    void update_stretches(const model::ShellState &state);
+    /// The pair's shell vertices in pair_dofs() order, with d offset /
+    /// d stretch of each; returns how many.
+    unsigned int offset_slopes(const Pair                  &pair,
+                               std::array<unsigned int, 4> &vertices,
+                               std::array<double, 4>       &slopes) const;
+    /// The pair's energy w m phi(g) through g = distance - offset(stretch):
+    /// the block of its stretches' force and their coupling to the
+    /// translations of 'translations' (pair_dofs()).
+    void add_stretch_terms(const Pair                    &pair,
+                           const std::array<Point<3>, 4> &points,
+                           const SquaredDistance         &s,
+                           double                         weight,
+                           const ScalarDerivatives       &phi,
+                           const PairEnergy              &energy,
+                           const model::DofBlock         &translations,
+                           const model::BlockSink        &sink,
+                           bool                           with_tangent) const;
+    /// The stretch block's tangent: the stretches' coupling to the pair's
+    /// shell translations and to each other ('curvature' = w m phi'').
+    static void stretch_tangent(const std::vector<double>  &slopes,
+                                const Coordinates12        &slope_of_force,
+                                ShellCoordinates            shell,
+                                double                      curvature,
+                                dealii::FullMatrix<double> &matrix);
+    /// The largest fraction of 'correction' whose thickening grows each
+    /// pair's offset by at most 0.09 of its gap (the step filter keeps a
+    /// tenth against the motion), and an out-of-reach pair's by 0.09 of
+    /// the activation distance: so every gap stays open.
+    double thickening_fraction(const dealii::Vector<double> &correction) const;
     /// Whether the pair's searched distance puts it beyond the reach of
     /// its own offset, where its energy is zero.
     bool beyond_reach(const Pair &pair) const;
@@ -779,6 +822,10 @@ namespace coshell::contact
     void pair_hessian(const PairEnergy           &energy,
                       ShellCoordinates            shell,
                       dealii::FullMatrix<double> &matrix) const;
+    /// The rest of the move of the pair's obstacle points (zero at its
+    /// shell points), from where the step filter held them to the target.
+    std::array<dealii::Tensor<1, 3>, 4>
+         remaining_obstacle_moves(const Pair &pair) const;
     void anticipate_obstacle(const Pair       &pair,
                              const PairEnergy &energy,
                              model::DofBlock  &block) const;

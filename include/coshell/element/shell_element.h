@@ -22,6 +22,10 @@ namespace coshell::element
     /// Dimensionless size of the drilling penalty (see add_drilling_penalty);
     /// used by the CST only.
     double drilling_factor = 1e-3;
+    /// false: the CST keeps only its drilling penalty, because the
+    /// in-plane stiffness comes from the thick membrane (ThickMembrane),
+    /// whose law also governs the thickness. Used by the CST only.
+    bool membrane_in_plane = true;
     /// Multipliers of the ANDES membrane's higher-order stiffness and of
     /// its basic drilling weight: 1 is Felippa's optimal element.
     /// ShellModel lowers them on the facets of a curved mesh, where the

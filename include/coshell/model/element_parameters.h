@@ -36,6 +36,13 @@ namespace coshell::model
     double andes_curvature_scaling = 10.0;
     /// The same for the Allman drilling weight alpha_b of the basic part.
     double andes_basic_drilling_scaling = 0.1;
+    /// Whether each vertex has a thickness stretch unknown and the
+    /// membrane is the thick membrane (then options.membrane_in_plane is
+    /// false: the CST keeps only its drilling penalty).
+    bool thickness_stretch = false;
+    /// Nominal face pressure in MPa (force per reference area), times the
+    /// load factor; only with thickness_stretch.
+    double face_pressure = 0;
 
     static void declare_parameters(dealii::ParameterHandler &prm);
     /// Throws std::invalid_argument naming the parameter for non-physical
@@ -49,5 +56,10 @@ namespace coshell::model
 
     /// Short human-readable description, e.g. "cst+dkt".
     std::string element_name() const;
+
+  private:
+    /// Throws naming the parameter when Thickness stretch or Face pressure
+    /// do not fit the rest of the subsection.
+    void check_thickness_stretch();
   };
 } // namespace coshell::model

@@ -88,10 +88,8 @@ namespace coshell::model
                                CellContribution      &contribution,
                                bool                   with_tangent) const;
 
-    element::NodalRotations nodal_rotations(const CellIterator &cell,
-                                            const ShellState   &state) const;
-    double                  strain_energy(const CellIterator &cell,
-                                          const ShellState   &state) const;
+    double strain_energy(const CellIterator &cell,
+                         const ShellState   &state) const;
   };
 
   /// The strains of one cell, recovered from its resultants through its
@@ -117,6 +115,10 @@ namespace coshell::model
   LargestStrains
   largest_strains(const ShellModel                            &model,
                   const std::vector<element::ShellResultants> &resultants);
+
+  /// The rotation matrices of a cell's vertices in 'state'.
+  element::NodalRotations nodal_rotations(const CellIterator &cell,
+                                          const ShellState   &state);
 
   /// The triangle of a cell in the current configuration of 'state'.
   element::SpatialTriangle current_triangle(const ShellModel   &model,

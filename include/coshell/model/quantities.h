@@ -18,7 +18,8 @@ namespace coshell::model
     static void declare_parameters(dealii::ParameterHandler &prm);
     void        parse_parameters(dealii::ParameterHandler &prm);
 
-    /// Values of every named quantity for a solution.
+    /// Values of every named quantity for a solution, and the thickness
+    /// extremes with Element/Thickness stretch.
     std::map<std::string, double>
     evaluate(const ShellModel             &model,
              const dealii::Vector<double> &solution) const;
@@ -74,5 +75,11 @@ namespace coshell::model
                                 const ShellModel              &model,
                                 const dealii::Vector<double>  &solution,
                                 std::map<std::string, double> &values);
+    /// With Element/Thickness stretch: min_thickness_stretch and
+    /// max_thickness_stretch (h / h0 at the vertices, dimensionless) and
+    /// min_thickness (the thinnest cell, mm).
+    static void add_thickness_extremes(const ShellModel              &model,
+                                       const dealii::Vector<double>  &solution,
+                                       std::map<std::string, double> &values);
   };
 } // namespace coshell::model

@@ -9,6 +9,7 @@
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/fe_system.h>
 #include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/sparse_matrix.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
@@ -86,8 +87,33 @@ namespace coshell::model
       return vertex_dofs_[v];
     }
     bool vertex_is_used(unsigned int v) const;
+
+    /// Whether each used vertex has a thickness stretch unknown
+    /// (Element/Thickness stretch). Its DoF holds lambda - 1, lambda =
+    /// h / h0, so that zero is the reference as for every other DoF.
+    bool has_thickness_stretch() const
+    {
+      return !thickness_dofs_.empty();
+    }
+    /// The DoFs of the six-component FESystem; the thickness stretches,
+    /// when present, are numbered after them, n_fe_dofs() to n_dofs().
+    global_dof_index n_fe_dofs() const;
+    /// The thickness-stretch DoF of used vertex 'v' (only with
+    /// has_thickness_stretch()).
+    global_dof_index thickness_dof(unsigned int v) const
+    {
+      return thickness_dofs_[v];
+    }
+    /// The thickness of 'cell' in mm in the configuration 'values': h0
+    /// times the mean stretch of its vertices (h0 without the stretch).
+    double current_thickness(const CellIterator           &cell,
+                             const dealii::Vector<double> &values) const;
+    /// The first n_fe_dofs() entries of 'v': the part deal.II's DataOut
+    /// and FEValues know (v itself when there is no thickness stretch).
+    dealii::Vector<double> fe_part(const dealii::Vector<double> &v) const;
     /// A vector in the DoF layout rearranged by mesh vertex (6 entries per
-    /// Triangulation vertex, component fastest, 0 at unused vertices), and
+    /// Triangulation vertex, component fastest, 0 at unused vertices; with
+    /// the thickness stretch, one more block of 1 entry per vertex), and
     /// back: a layout that does not depend on the DoF numbering, which
     /// differs between serial and MPI runs. Checkpoints store it, so a run
     /// restarts on any number of ranks. Empty vectors stay empty;
@@ -174,6 +200,7 @@ namespace coshell::model
     dealii::FESystem<2, 3>                    fe_;
     dealii::DoFHandler<2, 3>                  dof_handler_;
     std::vector<VertexDofs>                   vertex_dofs_;
+    std::vector<global_dof_index>             thickness_dofs_;
     dealii::IndexSet                          locally_owned_dofs_;
     std::vector<int>                          normal_sign_;
     std::vector<element::ShellMaterial>       cell_materials_;
@@ -181,6 +208,19 @@ namespace coshell::model
     std::vector<double>                       vertex_thickness_;
 
     void number_vertex_dofs();
+    /// Entries per vertex beyond the six in the vertex order: 1 with the
+    /// thickness stretch, else 0.
+    unsigned int thickness_fields() const
+    {
+      return has_thickness_stretch() ? 1 : 0;
+    }
+    /// One DoF per used vertex after the FESystem's, with
+    /// Element/Thickness stretch; refused on several ranks.
+    void number_thickness_dofs();
+    /// Adds each cell's thickness DoFs to its own and to each other.
+    void
+    add_thickness_sparsity(const dealii::AffineConstraints<double> &constraints,
+                           dealii::DynamicSparsityPattern          &dsp) const;
     /// Throws std::out_of_range naming 'v' (vertex_dofs()).
     [[noreturn]] void throw_not_a_vertex(unsigned int v) const;
     /// cell_options_, with each triangle's ANDES drilling scales.
