@@ -51,7 +51,7 @@ namespace coshell::contact
     largest_stretch_ = 1;
     for (const unsigned int v : shell_vertices_)
     {
-      stretch_[v]      = 1 + state.values()[model_.thickness_dof(v)];
+      stretch_[v]      = model_.thickness_stretch(v, state.values());
       largest_stretch_ = std::max(largest_stretch_, stretch_[v]);
     }
   }

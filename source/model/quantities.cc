@@ -348,7 +348,7 @@ namespace coshell::model
     for (unsigned int v = 0; v < model.surface().n_vertices(); ++v)
       if (model.vertex_is_used(v))
       {
-        const double stretch = 1 + solution[model.thickness_dof(v)];
+        const double stretch = model.thickness_stretch(v, solution);
         smallest_stretch     = std::min(smallest_stretch, stretch);
         largest_stretch      = std::max(largest_stretch, stretch);
       }

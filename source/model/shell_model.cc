@@ -293,9 +293,9 @@ namespace coshell::model
     const double reference = material(cell).thickness;
     if (!has_thickness_stretch())
       return reference;
-    double mean_stretch = 1.0;
+    double mean_stretch = 0;
     for (unsigned int v = 0; v < 3; ++v)
-      mean_stretch += values[thickness_dofs_[cell->vertex_index(v)]] / 3.0;
+      mean_stretch += thickness_stretch(cell->vertex_index(v), values) / 3.0;
     return reference * mean_stretch;
   }
 

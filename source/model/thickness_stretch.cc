@@ -90,7 +90,7 @@ namespace coshell::model
     std::array<double, 3> lambda;
     for (unsigned int v = 0; v < 3; ++v)
       lambda[v] =
-          1.0 + state.values()[model_.thickness_dof(cell->vertex_index(v))];
+          model_.thickness_stretch(cell->vertex_index(v), state.values());
     return lambda;
   }
 
@@ -104,16 +104,22 @@ namespace coshell::model
       dofs.push_back(model_.thickness_dof(cell->vertex_index(v)));
   }
 
-  void ThickMembraneForce::add_membrane(const CellIterator &cell,
-                                        const ShellState   &state,
-                                        DofBlock           &block,
-                                        bool                with_tangent) const
+  ThickMembraneForce::CellConfiguration
+  ThickMembraneForce::configuration(const CellIterator &cell,
+                                    const ShellState   &state) const
+  {
+    return {current_triangle(model_, cell, state), stretches(cell, state)};
+  }
+
+  void ThickMembraneForce::add_membrane(const CellIterator      &cell,
+                                        const CellConfiguration &at,
+                                        DofBlock                &block,
+                                        bool with_tangent) const
   {
     Vector<double>     gradient;
     FullMatrix<double> hessian;
     membranes_[cell->active_cell_index()].derivatives(
-        current_triangle(model_, cell, state), stretches(cell, state), gradient,
-        hessian);
+        at.positions, at.stretches, gradient, hessian);
     // The kernel's 9 positions (3 v + d) and 3 stretches (9 + v).
     std::array<unsigned int, element::thick_membrane_dofs> to_block;
     for (unsigned int v = 0; v < 3; ++v)
@@ -133,17 +139,18 @@ namespace coshell::model
     }
   }
 
-  void ThickMembraneForce::add_bending_change(const CellIterator &cell,
-                                              const ShellState   &state,
-                                              DofBlock           &block,
+  void ThickMembraneForce::add_bending_change(const CellIterator      &cell,
+                                              const ShellState        &state,
+                                              const CellConfiguration &at,
+                                              DofBlock                &block,
                                               bool with_tangent) const
   {
     if (bending_.empty())
       return;
-    const auto                 &bending = bending_[cell->active_cell_index()];
-    const auto                  current = current_triangle(model_, cell, state);
+    const auto                 &bending  = bending_[cell->active_cell_index()];
+    const auto                 &current  = at.positions;
     const auto                  rotation = nodal_rotations(cell, state);
-    const auto                  scale = bending_scale(stretches(cell, state));
+    const auto                  scale    = bending_scale(at.stretches);
     element::ShellDisplacements force;
     FullMatrix<double>          tangent;
     bending.internal_force(current, rotation,
@@ -182,8 +189,9 @@ namespace coshell::model
       block.vector.reinit(block_size);
       block.matrix.reinit(with_tangent ? block_size : 0,
                           with_tangent ? block_size : 0);
-      add_membrane(cell, point.state, block, with_tangent);
-      add_bending_change(cell, point.state, block, with_tangent);
+      const CellConfiguration at = configuration(cell, point.state);
+      add_membrane(cell, at, block, with_tangent);
+      add_bending_change(cell, point.state, at, block, with_tangent);
       sink(block);
     }
   }
@@ -218,13 +226,13 @@ namespace coshell::model
     double energy = 0;
     for (const auto &cell : model_.dof_handler().active_cell_iterators())
     {
-      const auto lambda  = stretches(cell, state);
-      const auto current = current_triangle(model_, cell, state);
-      energy += membranes_[cell->active_cell_index()].energy(current, lambda);
+      const CellConfiguration at = configuration(cell, state);
+      energy += membranes_[cell->active_cell_index()].energy(at.positions,
+                                                             at.stretches);
       if (!bending_.empty())
-        energy += (bending_scale(lambda).value - 1) *
+        energy += (bending_scale(at.stretches).value - 1) *
                   bending_[cell->active_cell_index()].energy(
-                      current, nodal_rotations(cell, state));
+                      at.positions, nodal_rotations(cell, state));
     }
     return energy;
   }

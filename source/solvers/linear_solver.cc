@@ -400,11 +400,6 @@ namespace coshell::solvers
     {
       // Blocks of 6 consecutive DoFs per vertex (deal.II's numbering of a
       // vertex-only FESystem), so ML aggregates nodes, not single DoFs.
-      if (backend_->trilinos_matrix->m() % 6 != 0)
-        throw std::invalid_argument(
-            "Linear solver/Preconditioner: AMG aggregates blocks of six DoFs "
-            "per vertex; Element/Thickness stretch adds one more per vertex. "
-            "Use a direct solver.");
       parameters.set("PDE equations", 6);
       parameters.set("null space: type", "pre-computed");
       parameters.set("null space: dimension",

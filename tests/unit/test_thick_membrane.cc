@@ -46,32 +46,37 @@ namespace
 
   const std::array<double, 3> squeezed_stretches = {{0.7, 0.82, 0.64}};
 
-  double perturbed_energy(const ThickMembrane  &membrane,
-                          SpatialTriangle       positions,
-                          std::array<double, 3> stretches,
-                          unsigned int          dof,
-                          double                step)
+  /// The squeezed state of the tests with unknown 'dof' (kernel order)
+  /// moved by 'step'.
+  struct PerturbedState
   {
-    if (dof < 9)
-      positions[dof / 3][dof % 3] += step;
-    else
-      stretches[dof - 9] += step;
-    return membrane.energy(positions, stretches);
+    SpatialTriangle       positions = deformed_triangle();
+    std::array<double, 3> stretches = squeezed_stretches;
+
+    PerturbedState(unsigned int dof, double step)
+    {
+      if (dof < 9)
+        positions[dof / 3][dof % 3] += step;
+      else
+        stretches[dof - 9] += step;
+    }
+  };
+
+  double
+  perturbed_energy(const ThickMembrane &membrane, unsigned int dof, double step)
+  {
+    const PerturbedState state(dof, step);
+    return membrane.energy(state.positions, state.stretches);
   }
 
-  dealii::Vector<double> perturbed_gradient(const ThickMembrane  &membrane,
-                                            SpatialTriangle       positions,
-                                            std::array<double, 3> stretches,
-                                            unsigned int          dof,
-                                            double                step)
+  dealii::Vector<double> perturbed_gradient(const ThickMembrane &membrane,
+                                            unsigned int         dof,
+                                            double               step)
   {
-    if (dof < 9)
-      positions[dof / 3][dof % 3] += step;
-    else
-      stretches[dof - 9] += step;
+    const PerturbedState       state(dof, step);
     dealii::Vector<double>     gradient;
     dealii::FullMatrix<double> hessian;
-    membrane.derivatives(positions, stretches, gradient, hessian);
+    membrane.derivatives(state.positions, state.stretches, gradient, hessian);
     return gradient;
   }
 
@@ -140,10 +145,9 @@ TEST(ThickMembrane, GradientIsTheDerivativeOfTheEnergy)
   const double step = 1e-6;
   for (unsigned int k = 0; k < thick_membrane_dofs; ++k)
   {
-    const double difference =
-        (perturbed_energy(membrane, positions, squeezed_stretches, k, step) -
-         perturbed_energy(membrane, positions, squeezed_stretches, k, -step)) /
-        (2 * step);
+    const double difference = (perturbed_energy(membrane, k, step) -
+                               perturbed_energy(membrane, k, -step)) /
+                              (2 * step);
     EXPECT_NEAR(gradient(k), difference, 1e-6 * gradient.linfty_norm())
         << "unknown " << k;
   }
@@ -160,10 +164,8 @@ TEST(ThickMembrane, HessianIsTheDerivativeOfTheGradient)
   const double step = 1e-6;
   for (unsigned int l = 0; l < thick_membrane_dofs; ++l)
   {
-    dealii::Vector<double> difference =
-        perturbed_gradient(membrane, positions, squeezed_stretches, l, step);
-    difference.add(-1.0, perturbed_gradient(membrane, positions,
-                                            squeezed_stretches, l, -step));
+    dealii::Vector<double> difference = perturbed_gradient(membrane, l, step);
+    difference.add(-1.0, perturbed_gradient(membrane, l, -step));
     difference /= 2 * step;
     for (unsigned int k = 0; k < thick_membrane_dofs; ++k)
       EXPECT_NEAR(hessian(k, l), difference(k), 1e-6 * hessian.frobenius_norm())

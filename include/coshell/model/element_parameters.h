@@ -59,7 +59,8 @@ namespace coshell::model
 
   private:
     /// Throws naming the parameter when Thickness stretch or Face pressure
-    /// do not fit the rest of the subsection.
+    /// do not fit the rest of the subsection; with the stretch, leaves the
+    /// CST its drilling penalty only (options.membrane_in_plane = false).
     void check_thickness_stretch();
   };
 } // namespace coshell::model

@@ -104,6 +104,13 @@ namespace coshell::model
     {
       return thickness_dofs_[v];
     }
+    /// lambda = h / h0 of used vertex 'v' in the configuration 'values'
+    /// (only with has_thickness_stretch()).
+    double thickness_stretch(unsigned int                  v,
+                             const dealii::Vector<double> &values) const
+    {
+      return 1 + values[thickness_dofs_[v]];
+    }
     /// The thickness of 'cell' in mm in the configuration 'values': h0
     /// times the mean stretch of its vertices (h0 without the stretch).
     double current_thickness(const CellIterator           &cell,

@@ -82,9 +82,9 @@ namespace coshell::model
     void reinit_tangent(base::TangentMatrix &tangent) const override;
     /// Grows the pattern by the vertex couplings the contributions ask
     /// for (self contact); rebuilt only when they change.
-    void   begin_solve() override;
-    void   evaluate(dealii::Vector<double> &residual,
-                    base::TangentMatrix    *tangent) override;
+    void begin_solve() override;
+    void evaluate(dealii::Vector<double> &residual,
+                  base::TangentMatrix    *tangent) override;
     /// The sum of the contributions' energies (cells over the ranks);
     /// NaN unless every contribution has a potential.
     double energy() override;

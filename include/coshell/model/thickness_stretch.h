@@ -53,14 +53,24 @@ namespace coshell::model
     /// The cell's 18 shell DoFs and then its 3 stretch DoFs.
     void cell_dofs(const CellIterator                           &cell,
                    std::vector<dealii::types::global_dof_index> &dofs) const;
-    void add_membrane(const CellIterator &cell,
-                      const ShellState   &state,
-                      DofBlock           &block,
-                      bool                with_tangent) const;
-    void add_bending_change(const CellIterator &cell,
-                            const ShellState   &state,
-                            DofBlock           &block,
-                            bool                with_tangent) const;
+    /// A cell's current vertex positions and stretches, read once per
+    /// evaluation for both of its terms.
+    struct CellConfiguration
+    {
+      element::SpatialTriangle positions;
+      std::array<double, 3>    stretches;
+    };
+    CellConfiguration configuration(const CellIterator &cell,
+                                    const ShellState   &state) const;
+    void              add_membrane(const CellIterator      &cell,
+                                   const CellConfiguration &at,
+                                   DofBlock                &block,
+                                   bool                     with_tangent) const;
+    void              add_bending_change(const CellIterator      &cell,
+                                         const ShellState        &state,
+                                         const CellConfiguration &at,
+                                         DofBlock                &block,
+                                         bool                     with_tangent) const;
   };
 
   /// Element/Face pressure: a nominal pressure P on both faces, force per
