@@ -222,7 +222,21 @@ coshell_bad_input_test(iol_lens_inside_cartridge_wall
   ${injection} --set "Contact/Obstacle 1/Translation=-8$<SEMICOLON> 0$<SEMICOLON> axis_height")
 coshell_bad_input_test(iol_nozzle_narrower_than_two_haptics
   "Contact/Obstacle 1 .'cartridge'.: gmsh could not mesh .*injector.geo': Error.*nozzle's inner diameter 2 . nozzle_radius = 1.7 mm is not wider than twice the haptic thickness .haptic_thickness = 0.9 mm"
-  ${injection} --set "Constants/Changes=haptic_thickness = 0.9, nozzle_radius = 0.85")
+  ${injection} --set "Constants/Changes=haptic_thickness = 0.9, nozzle_radius = 0.85, thinnest_fraction = 0.5")
+# The tip (injection.prm's Constants/Requirements): narrower than 1.4 mm
+# (the narrowest real tips), or narrower than the lens can pass by volume:
+# a bore (2.0 mm: 3.1 mm^2) smaller than the optic's section (3.8 mm^2)
+# for a shell that keeps its thickness, or (1.4 mm: 1.5 mm^2) smaller than
+# that section thinned to half for one whose thickness can change.
+coshell_bad_input_test(iol_tip_narrower_than_real_tips
+  "Constants/Requirements: the cartridge's tip .2 nozzle_radius across. must be at least 1.4 mm .*is false with nozzle_radius = 0.6"
+  ${injection} --set "Constants/Changes=nozzle_radius = 0.6")
+coshell_bad_input_test(iol_tip_narrower_than_lens_by_volume
+  "Constants/Requirements: the tip is narrower than the lens can pass by volume.*is false with nozzle_radius = 1, thinnest_fraction = 1, optic_section = 3.8"
+  ${injection} --set "Constants/Changes=nozzle_radius = 1")
+coshell_bad_input_test(iol_tip_narrower_than_thinned_lens_by_volume
+  "Constants/Requirements: the tip is narrower than the lens can pass by volume.*is false with nozzle_radius = 0.7, thinnest_fraction = 0.5, optic_section = 3.8"
+  ${injection} --set "Constants/Changes=nozzle_radius = 0.7, thinnest_fraction = 0.5")
 coshell_bad_input_test(iol_plunger_wider_than_nozzle
   "Constants/Values: plunger_clearance = -0.05 must be > 0"
   ${injection} --set "Constants/Changes=plunger_radius = 1.8")

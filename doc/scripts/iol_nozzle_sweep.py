@@ -19,7 +19,11 @@ against the bore, the force against the travel), stamped with machine and
 commit; --replot redraws the PNG from the two CSV files.
 
   /usr/bin/python3 doc/scripts/iol_nozzle_sweep.py --coshell build/coshell \\
-      [--radii 1.9 1.75 1.6] [--lens 0.55 0.22] [--tag _coarse] [--replot]
+      [--radii 1.9 1.75 1.6] [--lens 0.55 0.22] [--sleeve 0|1|2]
+      [--thickness-stretch] [--tag _coarse] [--replot]
+
+A bore the scene refuses (injection.prm's Constants/Requirements: the
+tip narrower than the lens can pass by volume) is a row 'refused'.
 """
 import argparse
 import json
@@ -49,9 +53,16 @@ import matplotlib.pyplot as plt  # noqa: E402
 # nozzle_start to nozzle_tip, the chamber's inner radius is the wings'.
 NOZZLE_START, NOZZLE_TIP, CHAMBER_RADIUS = 11.5, 15.0, 2.0
 PLUNGER_CLEARANCE = 0.05
-# The plunger's sleeve is Contact/Obstacle 7, off unless its mesh is set.
-SLEEVE = 7
-SLEEVE_ON = "Contact/Obstacle 7/Mesh file=../../meshes/contact/plunger.geo"
+# The plunger's sleeves are Contact/Obstacles 7 and 8 (the inner one),
+# off unless their meshes are set.
+SLEEVES = (7, 8)
+SLEEVE_ON = ["Contact/Obstacle 7/Mesh file=../../meshes/contact/plunger.geo"]
+INNER_SLEEVE_ON = [
+    "Contact/Obstacle 8/Mesh file=../../meshes/contact/plunger.geo"]
+# The shell whose thickness changes (doc/theory.md, section 21) on the
+# CST membrane it needs; the bore's volume check lets it thin to half.
+THICKNESS_STRETCH = ["Element/Membrane element=cst",
+                     "Element/Thickness stretch=true"]
 
 
 def finished_or_partial(output, name):
@@ -71,13 +82,13 @@ def jam(message):
             if pinch else "")
 
 
-def pushing_forces(forces, sleeve):
+def pushing_forces(forces, sleeves):
     """The plunger's travel (mm), and the push on the lens along the axis
-    (N) and its cumulative work (N mm) of the plunger and, with the
-    sleeve, of the plunger and the sleeve together (they share steps)."""
+    (N) and its cumulative work (N mm) of the plunger and of its first
+    'sleeves' sleeves together (they share steps)."""
     _, _, displacement, push, work = plunger_rows(forces, PLUNGER)
-    if sleeve:
-        _, _, _, sleeve_push, sleeve_work = plunger_rows(forces, SLEEVE)
+    for sleeve in SLEEVES[:sleeves]:
+        _, _, _, sleeve_push, sleeve_work = plunger_rows(forces, sleeve)
         push, work = push + sleeve_push, work + sleeve_work
     return displacement, push, work
 
@@ -94,7 +105,10 @@ def path_measures(output, sleeve):
     displacement, push, work_so_far = pushing_forces(forces, sleeve)
     averaged, work = travel_measures(displacement, push, work_so_far)
     gaps = [float(r["min_distance"]) for r in forces]
-    return {
+    thinnest = ({"min_thickness_stretch": round(float(column(
+        history, "min_thickness_stretch").min()), 4)}
+        if "min_thickness_stretch" in history[0] else {})
+    return {**thinnest,
         "optic_width_in_nozzle_mm": round(float(chord[in_nozzle].max()), 3)
         if in_nozzle.any() else "",
         "optic_centre_max_x_mm": round(float(centre.max()), 3),
@@ -107,12 +121,15 @@ def path_measures(output, sleeve):
     }, (displacement, push)
 
 
-def run(radius, lens, coshell, work, timeout, sleeve):
-    """One bore's row and its force-travel curve."""
+def run(radius, lens, coshell, work, timeout, sleeve, stretch):
+    """One bore's row and its force-travel curve ('sleeve': how many of
+    the plunger's sleeves; 'stretch': the thickness may change)."""
     command, output = lens_command(
         lens, coshell, work,
-        [f"Constants/Changes=nozzle_radius = {radius}",
-         "Stage 4/Analysis type=none"] + ([SLEEVE_ON] if sleeve else []),
+        [f"Constants/Changes=nozzle_radius = {radius}"
+         + (", thinnest_fraction = 0.5" if stretch else ""),
+         "Stage 4/Analysis type=none"] + (SLEEVE_ON + INNER_SLEEVE_ON)[:sleeve]
+        + (THICKNESS_STRETCH if stretch else []),
         tag=f"_nozzle_{radius}", deploy=True)
     process = subprocess.run(command, stdout=subprocess.DEVNULL,
                              stderr=subprocess.PIPE, text=True,
@@ -123,6 +140,11 @@ def run(radius, lens, coshell, work, timeout, sleeve):
            "plunger_diameter_mm": round(2 * plunger, 3),
            "room_beside_plunger_in_chamber_mm":
                round(CHAMBER_RADIUS - plunger, 3)}
+    if not os.path.exists(os.path.join(output, "solution.pvd")):
+        # Refused before it ran (the bore's requirements): no curve.
+        return {**row, "status": "refused", "failed_at_s": "",
+                "pinched_by": "", "message": process.stderr.strip()
+                .splitlines()[-1]}, (np.array([]), np.array([]))
     measures, curve = path_measures(output, sleeve)
     if process.returncode != 0:
         message = process.stderr.strip().splitlines()[-1]
@@ -189,8 +211,8 @@ def plot(rows, curves, title, path, pusher="plunger"):
     print("wrote", path)
 
 
-def pusher(sleeve):
-    return "plunger and sleeve" if sleeve else "plunger"
+def pusher(sleeves):
+    return ("plunger", "plunger and sleeve", "plunger and sleeves")[sleeves]
 
 
 def write_curves(path, rows, curves, header):
@@ -233,10 +255,15 @@ def main():
                         help="lens.geo's optic and haptic mesh sizes (mm)")
     parser.add_argument("--timeout", type=float, default=3600,
                         help="seconds per bore")
-    parser.add_argument("--sleeve", action="store_true",
-                        help="with the plunger's sleeve (injection.prm's "
-                        "Contact/Obstacle 7); the forces are the plunger's "
-                        "and the sleeve's together")
+    parser.add_argument("--sleeve", type=int, default=0, choices=(0, 1, 2),
+                        help="with the plunger's sleeve (1, injection.prm's "
+                        "Contact/Obstacle 7) or both sleeves (2, Obstacles "
+                        "7 and 8); the forces are the plunger's and the "
+                        "sleeves' together")
+    parser.add_argument("--thickness-stretch", action="store_true",
+                        help="the lens's thickness may change "
+                        "(Element/Thickness stretch on the CST membrane, "
+                        "Constants thinnest_fraction = 0.5)")
     parser.add_argument("--tag", default="")
     parser.add_argument("--replot", action="store_true",
                         help="redraw the PNG from the CSV files of the "
@@ -249,19 +276,24 @@ def main():
             setting = f.readline()
         lens = re.search(r"lens sizes (\S+) mm", setting)
         rows, curves = read_study(name)
+        sleeves = ("sleeves on" in setting) + ("sleeve" in setting)
         plot(rows, curves, "IOL injection against the nozzle's bore, lens "
              f"{lens.group(1) if lens else '?'} mm ({stamp})",
-             os.path.join(OUT, name + ".png"), pusher(
-                 "sleeve on" in setting))
+             os.path.join(OUT, name + ".png"), pusher(sleeves))
         return
     machine, commit = machine_and_commit()
     header = [f"machine: {machine}; commit {commit}",
               "prm/iol/injection.prm, stages 1 to 3, lens sizes "
               f"{args.lens[0]:g}/{args.lens[1]:g} mm, Constants/Changes="
               "nozzle_radius = diameter/2"
-              + (", the plunger's sleeve on (Contact/Obstacle 7), forces "
-                 "and work of the plunger and the sleeve together"
-                 if args.sleeve else "") + ", Parallel/Threads = 1, "
+              + ("", ", the plunger's sleeve on (Contact/Obstacle 7), forces "
+                 "and work of the plunger and the sleeve together",
+                 ", the plunger's two sleeves on (Contact/Obstacles 7 and "
+                 "8), forces and work of the plunger and the sleeves "
+                 "together")[args.sleeve]
+              + (", the thickness stretch on (CST membrane, "
+                 "thinnest_fraction = 0.5)" if args.thickness_stretch else "")
+              + ", Parallel/Threads = 1, "
               "OPENBLAS_NUM_THREADS = 1; a failed run's measures are up "
               "to its failure"]
     rows, curves = [], []
@@ -269,7 +301,8 @@ def main():
         for radius in args.radii:
             row, curve = run(radius, tuple(args.lens),
                              os.path.abspath(args.coshell), work,
-                             args.timeout, args.sleeve)
+                             args.timeout, args.sleeve,
+                             args.thickness_stretch)
             rows.append(row)
             curves.append(curve)
             print(row, flush=True)

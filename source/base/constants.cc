@@ -154,6 +154,57 @@ namespace coshell::base
               "' is not a constant of Constants/Values");
       return values;
     }
+
+    /// The names of the scene's constants that 'expression' mentions, as
+    /// "name = value" for a message.
+    std::string named_values(const std::string                   &expression,
+                             const std::map<std::string, double> &values)
+    {
+      std::string listed, word;
+      const auto  flush = [&]()
+      {
+        const auto value = values.find(word);
+        if (value != values.end() && value->first != "pi" &&
+            listed.find(word + " = ") == std::string::npos)
+          listed += (listed.empty() ? "" : ", ") + word + " = " +
+                    short_number(value->second);
+        word.clear();
+      };
+      for (const char c : expression + ' ')
+        if (std::isalnum(static_cast<unsigned char>(c)) || c == '_')
+          word += c;
+        else
+          flush();
+      return listed;
+    }
+
+    /// Each entry of 'requirements' ("expression: message", entries
+    /// separated by ';', the message after the last ':') must evaluate to
+    /// a non-zero value with the scene's constants. Throws with the
+    /// message, the expression and the values of the constants it names:
+    /// a design value out of the range the scene was built for is
+    /// refused before anything is meshed.
+    void check_requirements(const std::string                   &requirements,
+                            const std::map<std::string, double> &values)
+    {
+      const std::string where = "Constants/Requirements";
+      for (const std::string &entry :
+           Utilities::split_string_list(requirements, ';'))
+      {
+        const auto colon = entry.rfind(':');
+        if (colon == std::string::npos || colon == 0 ||
+            Utilities::trim(entry.substr(colon + 1)).empty())
+          throw std::invalid_argument(where + ": '" + entry +
+                                      "' is not of the form 'expression: "
+                                      "message'");
+        const std::string expression = Utilities::trim(entry.substr(0, colon));
+        if (evaluate_constant_expression(expression, values, where) == 0)
+          throw std::invalid_argument(where + ": " +
+                                      Utilities::trim(entry.substr(colon + 1)) +
+                                      " ('" + expression + "' is false with " +
+                                      named_values(expression, values) + ")");
+      }
+    }
   } // namespace
 
   double
@@ -232,6 +283,15 @@ namespace coshell::base
                       "Names of constants (separated by ',') that must be "
                       "> 0: a scene that needs a forward speed or a "
                       "positive size refuses anything else before it runs.");
+    prm.declare_entry(
+        "Requirements", "", Patterns::Anything(),
+        "Conditions on the constants, as 'expression: message' entries "
+        "separated by ';' (the message follows the entry's last ':'), "
+        "checked after Values and Changes: an expression of the constants "
+        "that is 0 (false) refuses the scene with its message and the "
+        "values of the constants it names, e.g. 'nozzle_radius >= 0.7 && "
+        "nozzle_radius <= 1.75: the tip must be 1.4 to 3.5 mm'. Unit: none "
+        "(each expression in its constants' units).");
     prm.leave_subsection();
   }
 
@@ -241,8 +301,10 @@ namespace coshell::base
     const auto definitions =
         apply_changes(prm.get("Values"), prm.get("Changes"));
     const auto positive = Utilities::split_string_list(prm.get("Positive"));
+    const std::string requirements = prm.get("Requirements");
     prm.leave_subsection();
     scene_constants() = parse_values(definitions, positive);
+    check_requirements(requirements, scene_constants());
   }
 
   const std::map<std::string, double> &expression_constants()

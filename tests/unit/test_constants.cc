@@ -16,8 +16,9 @@ namespace
   /// Parses 'values' (and 'positive', 'changes') as a prm's Constants
   /// subsection.
   void parse_constants(const std::string &values,
-                       const std::string &positive = "",
-                       const std::string &changes  = "")
+                       const std::string &positive     = "",
+                       const std::string &changes      = "",
+                       const std::string &requirements = "")
   {
     dealii::ParameterHandler prm;
     Constants::declare_parameters(prm);
@@ -25,17 +26,19 @@ namespace
     prm.set("Values", values);
     prm.set("Positive", positive);
     prm.set("Changes", changes);
+    prm.set("Requirements", requirements);
     prm.leave_subsection();
     Constants::parse_parameters(prm);
   }
 
   std::string message_of(const std::string &values,
-                         const std::string &positive = "",
-                         const std::string &changes  = "")
+                         const std::string &positive     = "",
+                         const std::string &changes      = "",
+                         const std::string &requirements = "")
   {
     try
     {
-      parse_constants(values, positive, changes);
+      parse_constants(values, positive, changes, requirements);
     }
     catch (const std::invalid_argument &error)
     {
@@ -143,5 +146,29 @@ TEST(Constants, ChangesReplaceValuesWhereTheyStand)
   // A changed value may use only the constants before its place.
   EXPECT_NE(message_of(values, "", "out = push")
                 .find("Constants/Changes: out: cannot evaluate 'push'"),
+            std::string::npos);
+}
+
+// A requirement holds or refuses the scene with its message and the values
+// of the constants it names (pi and constants it does not name left out);
+// it sees the changed values; an entry without a message is refused.
+TEST(Constants, RequirementsRefuseWithTheirMessage)
+{
+  const std::string values    = "radius = 0.9, area = pi * radius^2, other = 1";
+  const std::string tip_range = "radius >= 0.7 && radius <= 1.75: the tip "
+                                "must be 1.4 to 3.5 mm";
+  EXPECT_EQ(message_of(values, "", "", tip_range + "; area > 2: wide enough"),
+            "");
+  EXPECT_EQ(message_of(values, "", "radius = 0.6", tip_range),
+            "Constants/Requirements: the tip must be 1.4 to 3.5 mm ('radius "
+            ">= 0.7 && radius <= 1.75' is false with radius = 0.6)");
+  EXPECT_EQ(message_of(values, "", "", "area >= pi * other: wide enough"),
+            "Constants/Requirements: wide enough ('area >= pi * other' is "
+            "false with area = 2.54469, other = 1)");
+  EXPECT_EQ(message_of(values, "", "", "radius > 1"),
+            "Constants/Requirements: 'radius > 1' is not of the form "
+            "'expression: message'");
+  EXPECT_NE(message_of(values, "", "", "radious > 1: typo")
+                .find("Constants/Requirements: cannot evaluate 'radious > 1'"),
             std::string::npos);
 }

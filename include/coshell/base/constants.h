@@ -22,7 +22,8 @@ namespace coshell::base
     /// them those of every expression parsed afterwards. Throws
     /// std::invalid_argument naming the entry and the constant: a
     /// malformed entry, an unknown name in "Positive" or "Changes", a
-    /// constant changed twice, a value that must be positive and is not.
+    /// constant changed twice, a value that must be positive and is not,
+    /// an entry of "Requirements" that is false (with its message).
     static void parse_parameters(dealii::ParameterHandler &prm);
   };
 
