@@ -222,7 +222,8 @@ def write_curves(path, rows, curves, header):
               "force_mn": round(1e3 * float(f), 4)}
              for row, (displacement, push) in zip(rows, curves)
              for x, f in zip(displacement, push)]
-    write_csv(path, table, header)
+    write_csv(path, table, header,
+              ["nozzle_diameter_mm", "plunger_displacement_mm", "force_mn"])
 
 
 def read_study(name):
