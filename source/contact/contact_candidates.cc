@@ -293,20 +293,24 @@ namespace coshell::contact
     const Candidates &c = candidates_;
     if (c.margin < 0)
       return false;
+    // A thickening since the lists were made brings pairs within reach as
+    // a move would: it counts as drift on both sides.
+    const double growth = offset_growth_since(c.stretches);
     const double shell_now =
-        largest_drift(&shell_vertices_, motion.x, nullptr, c.shell);
+        largest_drift(&shell_vertices_, motion.x, nullptr, c.shell) + growth;
     const double shell_swept =
-        largest_drift(&shell_vertices_, motion.x, motion.dx, c.shell);
+        largest_drift(&shell_vertices_, motion.x, motion.dx, c.shell) + growth;
     if (parameters_.self_contact)
     {
       // A lens pushed along the injector mostly translates: its self
       // distances stay, and the lists with them.
       const double self_swept =
           largest_relative_drift(shell_vertices_, motion.x, motion.dx, c.shell);
-      if (2 * self_swept > c.margin)
+      if (2 * self_swept + growth > c.margin)
         return false;
       self_screen = {2 * largest_relative_drift(shell_vertices_, motion.x,
-                                                nullptr, c.shell)};
+                                                nullptr, c.shell) +
+                     growth};
     }
     else
       self_screen = {2 * shell_now};
@@ -498,6 +502,7 @@ namespace coshell::contact
       return;
     Candidates &c        = candidates_;
     c.margin             = candidate_margin();
+    c.stretches          = stretch_;
     c.shell              = x;
     c.obstacles          = current_;
     c.searched_shell     = x;

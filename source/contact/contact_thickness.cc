@@ -56,6 +56,16 @@ namespace coshell::contact
     }
   }
 
+  double Contact::offset_growth_since(const std::vector<double> &before) const
+  {
+    if (stretch_.empty() || before.size() != stretch_.size())
+      return 0;
+    double largest = 0;
+    for (const unsigned int v : shell_vertices_)
+      largest = std::max(largest, stretch_[v] - before[v]);
+    return largest_thickness_ * largest;
+  }
+
   unsigned int Contact::offset_slopes(const Pair                  &pair,
                                       std::array<unsigned int, 4> &vertices,
                                       std::array<double, 4>       &slopes) const

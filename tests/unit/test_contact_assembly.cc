@@ -842,3 +842,36 @@ TEST(ContactAssembly, SelfContactStretchTermsMatchFiniteDifferences)
   parameters.self_contact               = true;
   check_stretch_terms(surface, parameters, true);
 }
+
+// A thickening alone, with no move, brings a pair within reach: the plane
+// lies 0.9 below the plate's mid-surface, beyond the unit thickness's
+// reach and the candidate lists' margin (0.5 + 0.1 + 0.25) when the lists
+// are made; stretched to 1.7 the plate's half thickness is 0.85, and the
+// pairs, their forces and the tangent must be those of a contact that
+// makes its lists at the stretched state.
+TEST(ContactAssembly, ThickeningBringsUnlistedPairsWithinReach)
+{
+  mesh::Surface surface;
+  mesh::make_rectangle(surface, 2, 2, 2, 2, mesh::TrianglePattern::crossed);
+  contact::ContactParameters parameters = barrier_parameters();
+  parameters.obstacles                  = {plane(-0.9, 0)};
+  const model::ShellModel model(surface, stretching_unit_thickness(),
+                                dealii::Tensor<1, 3>({0, 0, 1}));
+  model::ShellState       state(model, true);
+  contact::Contact        contact(model, parameters);
+  contact.check_initial_configuration(state, 0);
+  contact::ContactContribution contribution(contact);
+  const unsigned int           n = model.n_dofs();
+  EXPECT_EQ(assemble(contribution, state, 0, n).force.linfty_norm(), 0);
+  contribution.save();
+  Vector<double> thickening(n);
+  for (unsigned int v = 0; v < surface.n_vertices(); ++v)
+    thickening[model.thickness_dof(v)] = 0.7;
+  state.apply_increment(thickening);
+  const Assembled thickened = assemble(contribution, state, 1, n);
+  EXPECT_GT(thickened.force.linfty_norm(), 0);
+  contact::Contact fresh(model, parameters);
+  fresh.check_initial_configuration(state, 1);
+  contact::ContactContribution fresh_contribution(fresh);
+  expect_same_assembly(thickened, assemble(fresh_contribution, state, 1, n), 1);
+}

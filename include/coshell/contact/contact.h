@@ -466,6 +466,10 @@ namespace coshell::contact
     double largest_current_thickness() const;
     /// Reads the stretches of 'state' (nothing without them).
     void update_stretches(const model::ShellState &state);
+    /// How much any pair's offset (both sides' halves) has grown since the
+    /// stretches were 'before': the largest thickening times the largest
+    /// reference thickness (length; 0 without stretches).
+    double offset_growth_since(const std::vector<double> &before) const;
     /// The pair's shell vertices in pair_dofs() order, with d offset /
     /// d stretch of each; returns how many.
     unsigned int offset_slopes(const Pair                  &pair,
@@ -559,7 +563,10 @@ namespace coshell::contact
     {
       std::vector<dealii::Point<3>>              shell;
       std::vector<std::vector<dealii::Point<3>>> obstacles;
-      double                                     margin = -1;
+      /// The shell's thickness stretches when the lists were made (empty
+      /// without Element/Thickness stretch).
+      std::vector<double>        stretches;
+      double                     margin = -1;
       std::vector<CandidateRows> vertex_triangle, triangle_vertex, edge_edge;
       CandidateRows              self_vertex_triangle, self_edge_edge;
       /// Where the last pair search found the shell and the obstacles,
