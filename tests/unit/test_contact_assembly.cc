@@ -806,22 +806,38 @@ namespace
 
 namespace
 {
-  /// The stretch terms of 'surface' (unit thickness, stretching) under
-  /// 'parameters', after a converged state at t = 0 and squeeze_and_slide.
+  /// 'surface' (unit thickness, stretching) in contact under
+  /// 'parameters', checked at t = 0.
+  struct StretchingContact
+  {
+    StretchingContact(const mesh::Surface              &surface,
+                      const contact::ContactParameters &parameters)
+        : model(surface,
+                stretching_unit_thickness(),
+                dealii::Tensor<1, 3>({0, 0, 1})),
+          state(model, true), contact(model, parameters), contribution(contact)
+    {
+      contact.check_initial_configuration(state, 0);
+    }
+    const model::ShellModel      model;
+    model::ShellState            state;
+    contact::Contact             contact;
+    contact::ContactContribution contribution;
+  };
+
+  /// The stretch terms of 'surface' under 'parameters', after a converged
+  /// state at t = 0 and squeeze_and_slide.
   void check_stretch_terms(const mesh::Surface              &surface,
                            const contact::ContactParameters &parameters,
                            bool                              upper_only)
   {
-    const model::ShellModel model(surface, stretching_unit_thickness(),
-                                  dealii::Tensor<1, 3>({0, 0, 1}));
-    model::ShellState       state(model, true);
-    contact::Contact        contact(model, parameters);
-    contact.check_initial_configuration(state, 0);
-    contact::ContactContribution contribution(contact);
-    assemble(contribution, state, 0, model.n_dofs());
-    contribution.save();
-    state.apply_increment(squeeze_and_slide(surface, model, upper_only));
-    expect_stretch_terms_match_differences(contribution, model, state);
+    StretchingContact scene(surface, parameters);
+    assemble(scene.contribution, scene.state, 0, scene.model.n_dofs());
+    scene.contribution.save();
+    scene.state.apply_increment(
+        squeeze_and_slide(surface, scene.model, upper_only));
+    expect_stretch_terms_match_differences(scene.contribution, scene.model,
+                                           scene.state);
   }
 } // namespace
 
@@ -855,23 +871,20 @@ TEST(ContactAssembly, ThickeningBringsUnlistedPairsWithinReach)
   mesh::make_rectangle(surface, 2, 2, 2, 2, mesh::TrianglePattern::crossed);
   contact::ContactParameters parameters = barrier_parameters();
   parameters.obstacles                  = {plane(-0.9, 0)};
-  const model::ShellModel model(surface, stretching_unit_thickness(),
-                                dealii::Tensor<1, 3>({0, 0, 1}));
-  model::ShellState       state(model, true);
-  contact::Contact        contact(model, parameters);
-  contact.check_initial_configuration(state, 0);
-  contact::ContactContribution contribution(contact);
-  const unsigned int           n = model.n_dofs();
-  EXPECT_EQ(assemble(contribution, state, 0, n).force.linfty_norm(), 0);
-  contribution.save();
+  StretchingContact  scene(surface, parameters);
+  const unsigned int n = scene.model.n_dofs();
+  EXPECT_EQ(assemble(scene.contribution, scene.state, 0, n).force.linfty_norm(),
+            0);
+  scene.contribution.save();
   Vector<double> thickening(n);
   for (unsigned int v = 0; v < surface.n_vertices(); ++v)
-    thickening[model.thickness_dof(v)] = 0.7;
-  state.apply_increment(thickening);
-  const Assembled thickened = assemble(contribution, state, 1, n);
+    thickening[scene.model.thickness_dof(v)] = 0.7;
+  scene.state.apply_increment(thickening);
+  const Assembled thickened = assemble(scene.contribution, scene.state, 1, n);
   EXPECT_GT(thickened.force.linfty_norm(), 0);
-  contact::Contact fresh(model, parameters);
-  fresh.check_initial_configuration(state, 1);
+  contact::Contact fresh(scene.model, parameters);
+  fresh.check_initial_configuration(scene.state, 1);
   contact::ContactContribution fresh_contribution(fresh);
-  expect_same_assembly(thickened, assemble(fresh_contribution, state, 1, n), 1);
+  expect_same_assembly(thickened,
+                       assemble(fresh_contribution, scene.state, 1, n), 1);
 }
