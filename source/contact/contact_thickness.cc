@@ -58,8 +58,11 @@ namespace coshell::contact
 
   double Contact::offset_growth_since(const std::vector<double> &before) const
   {
-    if (stretch_.empty() || before.size() != stretch_.size())
+    if (stretch_.empty())
       return 0;
+    // Lists made before the stretches were read: nothing is known.
+    if (before.size() != stretch_.size())
+      return std::numeric_limits<double>::infinity();
     double largest = 0;
     for (const unsigned int v : shell_vertices_)
       largest = std::max(largest, stretch_[v] - before[v]);
